@@ -1,0 +1,338 @@
+// DenseKernels.h — the dense kernels of the supernodal factorization and solve (paper §3.4):
+// Cholesky of a diagonal block (potrf), triangular solves (trsm/trsv), the Hermitian rank-k
+// update that forms a supernode's update matrix (syrk/herk) and the products of the solve
+// (gemm/gemv). All matrices are column-major with explicit leading dimensions.
+//
+// For float, double, complex<float> and complex<double> the kernels call BLAS/LAPACK (OpenBLAS)
+// when EIGEN_UPDATABLE_CHOLESKY_USE_BLAS is defined (the CMake target defines it); for every
+// other scalar (e.g. long double), or without BLAS, they use Eigen's own dense code. Tiny
+// blocks, where a BLAS call costs more than its arithmetic, take inline loops in all cases.
+//
+// Failure mode: potrf reports the first column whose pivot is not a positive finite number
+// (NaN and Inf included), so that the caller can report NumericalIssue.
+
+#ifndef EIGEN_UPDATABLE_CHOLESKY_DENSE_KERNELS_H
+#define EIGEN_UPDATABLE_CHOLESKY_DENSE_KERNELS_H
+
+#include <complex>
+#include <cmath>
+
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+extern "C" {
+// Fortran BLAS / LAPACK with 32-bit integers (Debian's OpenBLAS and reference BLAS).
+void spotrf_(const char*, const int*, float*, const int*, int*);
+void dpotrf_(const char*, const int*, double*, const int*, int*);
+void cpotrf_(const char*, const int*, void*, const int*, int*);
+void zpotrf_(const char*, const int*, void*, const int*, int*);
+void strsm_(const char*, const char*, const char*, const char*, const int*, const int*, const float*,
+            const float*, const int*, float*, const int*);
+void dtrsm_(const char*, const char*, const char*, const char*, const int*, const int*, const double*,
+            const double*, const int*, double*, const int*);
+void ctrsm_(const char*, const char*, const char*, const char*, const int*, const int*, const void*,
+            const void*, const int*, void*, const int*);
+void ztrsm_(const char*, const char*, const char*, const char*, const int*, const int*, const void*,
+            const void*, const int*, void*, const int*);
+void ssyrk_(const char*, const char*, const int*, const int*, const float*, const float*, const int*,
+            const float*, float*, const int*);
+void dsyrk_(const char*, const char*, const int*, const int*, const double*, const double*, const int*,
+            const double*, double*, const int*);
+void cherk_(const char*, const char*, const int*, const int*, const float*, const void*, const int*,
+            const float*, void*, const int*);
+void zherk_(const char*, const char*, const int*, const int*, const double*, const void*, const int*,
+            const double*, void*, const int*);
+void sgemm_(const char*, const char*, const int*, const int*, const int*, const float*, const float*,
+            const int*, const float*, const int*, const float*, float*, const int*);
+void dgemm_(const char*, const char*, const int*, const int*, const int*, const double*, const double*,
+            const int*, const double*, const int*, const double*, double*, const int*);
+void cgemm_(const char*, const char*, const int*, const int*, const int*, const void*, const void*,
+            const int*, const void*, const int*, const void*, void*, const int*);
+void zgemm_(const char*, const char*, const int*, const int*, const int*, const void*, const void*,
+            const int*, const void*, const int*, const void*, void*, const int*);
+// OpenBLAS thread control; weak so that any other BLAS links too (then these are null).
+void openblas_set_num_threads(int) __attribute__((weak));
+int openblas_get_num_threads(void) __attribute__((weak));
+}
+#endif
+
+namespace Eigen {
+namespace internal {
+namespace updatable_cholesky {
+
+/** \internal Sets the number of threads the BLAS library uses (OpenBLAS only) and returns the
+  * previous number, or 0 when the BLAS cannot be controlled. */
+inline int setBlasThreads(int threads) {
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+  if (openblas_set_num_threads && openblas_get_num_threads) {
+    int previous = openblas_get_num_threads();
+    if (previous != threads) openblas_set_num_threads(threads);
+    return previous;
+  }
+#endif
+  EIGEN_UNUSED_VARIABLE(threads);
+  return 0;
+}
+
+template <typename Scalar> struct BlasTraits { enum { Supported = 0 }; };
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+template <> struct BlasTraits<float> { enum { Supported = 1 }; };
+template <> struct BlasTraits<double> { enum { Supported = 1 }; };
+template <> struct BlasTraits<std::complex<float> > { enum { Supported = 1 }; };
+template <> struct BlasTraits<std::complex<double> > { enum { Supported = 1 }; };
+
+inline void blasPotrf(int n, float* a, int lda, int* info) { spotrf_("L", &n, a, &lda, info); }
+inline void blasPotrf(int n, double* a, int lda, int* info) { dpotrf_("L", &n, a, &lda, info); }
+inline void blasPotrf(int n, std::complex<float>* a, int lda, int* info) { cpotrf_("L", &n, a, &lda, info); }
+inline void blasPotrf(int n, std::complex<double>* a, int lda, int* info) { zpotrf_("L", &n, a, &lda, info); }
+
+#define EIGEN_UC_TRSM(T, F)                                                                          \
+  inline void blasTrsm(char side, char trans, int m, int n, const T* a, int lda, T* b, int ldb) {    \
+    const T one(1);                                                                                  \
+    F(&side, "L", &trans, "N", &m, &n, &one, a, &lda, b, &ldb);                                      \
+  }
+EIGEN_UC_TRSM(float, strsm_)
+EIGEN_UC_TRSM(double, dtrsm_)
+EIGEN_UC_TRSM(std::complex<float>, ctrsm_)
+EIGEN_UC_TRSM(std::complex<double>, ztrsm_)
+#undef EIGEN_UC_TRSM
+
+inline void blasHerk(int n, int k, const float* a, int lda, float* c, int ldc) {
+  const float alpha = -1, beta = 1;
+  ssyrk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
+}
+inline void blasHerk(int n, int k, const double* a, int lda, double* c, int ldc) {
+  const double alpha = -1, beta = 1;
+  dsyrk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
+}
+inline void blasHerk(int n, int k, const std::complex<float>* a, int lda, std::complex<float>* c, int ldc) {
+  const float alpha = -1, beta = 1;
+  cherk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
+}
+inline void blasHerk(int n, int k, const std::complex<double>* a, int lda, std::complex<double>* c, int ldc) {
+  const double alpha = -1, beta = 1;
+  zherk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
+}
+
+#define EIGEN_UC_GEMM(T, F)                                                                          \
+  inline void blasGemm(char ta, int m, int n, int k, T alpha, const T* a, int lda, const T* b, int ldb, \
+                       T beta, T* c, int ldc) {                                                      \
+    F(&ta, "N", &m, &n, &k, &alpha, a, &lda, b, &ldb, &beta, c, &ldc);                               \
+  }
+EIGEN_UC_GEMM(float, sgemm_)
+EIGEN_UC_GEMM(double, dgemm_)
+EIGEN_UC_GEMM(std::complex<float>, cgemm_)
+EIGEN_UC_GEMM(std::complex<double>, zgemm_)
+#undef EIGEN_UC_GEMM
+#endif
+
+/** \internal True when x is a usable Cholesky pivot: real part positive and finite. */
+template <typename Scalar>
+inline bool isGoodPivot(const Scalar& x) {
+  typedef typename NumTraits<Scalar>::Real Real;
+  const Real r = numext::real(x);
+  return r > Real(0) && (numext::isfinite)(r);
+}
+
+/** \internal Below this many multiply-adds a kernel uses inline loops instead of a library call. */
+enum { SmallKernelWork = 512 };
+
+/** \internal Unblocked in-place Cholesky of the lower triangle of an n×n block. Returns -1 on
+  * success, else the 0-based column whose pivot was not positive and finite. */
+template <typename Scalar>
+Index smallPotrf(Index n, Scalar* a, Index lda) {
+  typedef typename NumTraits<Scalar>::Real Real;
+  for (Index k = 0; k < n; ++k) {
+    Scalar* ck = a + k * lda;
+    Real d = numext::real(ck[k]);
+    for (Index j = 0; j < k; ++j) d -= numext::abs2(a[k + j * lda]);
+    if (!(d > Real(0)) || !(numext::isfinite)(d)) return k;
+    d = std::sqrt(d);
+    ck[k] = Scalar(d);
+    const Real inv = Real(1) / d;
+    for (Index i = k + 1; i < n; ++i) {
+      Scalar s = ck[i];
+      for (Index j = 0; j < k; ++j) s -= a[i + j * lda] * numext::conj(a[k + j * lda]);
+      ck[i] = s * inv;
+    }
+  }
+  return -1;
+}
+
+/** \internal In-place Cholesky A = L L^H of the lower triangle of the n×n block at a.
+  * \returns -1 on success, else the 0-based column of the first bad pivot. */
+template <typename Scalar>
+Index potrf(Index n, Scalar* a, Index lda) {
+  if (n == 0) return -1;
+  if (n * n * n <= 3 * SmallKernelWork) return smallPotrf(n, a, lda);
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+  if (BlasTraits<Scalar>::Supported) {
+    int info = 0;
+    blasPotrf(int(n), a, int(lda), &info);
+    if (info > 0) return info - 1;
+    if (info < 0) return 0;
+  } else
+#endif
+  {
+    Map<Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > m(a, n, n, OuterStride<>(lda));
+    Index ret = llt_inplace<Scalar, Lower>::blocked(m);
+    if (ret >= 0) return ret;
+  }
+  // LAPACK implementations differ in whether they catch NaN pivots: check the result.
+  for (Index k = 0; k < n; ++k)
+    if (!isGoodPivot(a[k + k * lda])) return k;
+  return -1;
+}
+
+/** \internal B := B · L^{-H} for the m×n block B and the n×n lower triangular L. */
+template <typename Scalar>
+void trsmRightLowerAdjoint(Index m, Index n, const Scalar* l, Index ldl, Scalar* b, Index ldb) {
+  if (m == 0 || n == 0) return;
+  if (m * n * n <= 2 * SmallKernelWork) {
+    // Column j of X solves X(:,j) L(j,j)^* = B(:,j) - sum_{k<j} X(:,k) conj(L(j,k)).
+    for (Index j = 0; j < n; ++j) {
+      Scalar* bj = b + j * ldb;
+      for (Index k = 0; k < j; ++k) {
+        const Scalar f = numext::conj(l[j + k * ldl]);
+        const Scalar* bk = b + k * ldb;
+        for (Index i = 0; i < m; ++i) bj[i] -= bk[i] * f;
+      }
+      const Scalar inv = Scalar(1) / numext::conj(l[j + j * ldl]);
+      for (Index i = 0; i < m; ++i) bj[i] *= inv;
+    }
+    return;
+  }
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+  if (BlasTraits<Scalar>::Supported) {
+    blasTrsm('R', 'C', int(m), int(n), l, int(ldl), b, int(ldb));
+    return;
+  }
+#endif
+  Map<const Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > L(l, n, n, OuterStride<>(ldl));
+  Map<Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > B(b, m, n, OuterStride<>(ldb));
+  L.template triangularView<Lower>().adjoint().template solveInPlace<OnTheRight>(B);
+}
+
+/** \internal Lower triangle of C (n×n) -= A · A^H for the n×k block A. */
+template <typename Scalar>
+void herkLowerMinus(Index n, Index k, const Scalar* a, Index lda, Scalar* c, Index ldc) {
+  if (n == 0 || k == 0) return;
+  if (n * n * k <= 2 * SmallKernelWork) {
+    for (Index j = 0; j < n; ++j) {
+      Scalar* cj = c + j * ldc;
+      for (Index p = 0; p < k; ++p) {
+        const Scalar* ap = a + p * lda;
+        const Scalar f = numext::conj(ap[j]);
+        for (Index i = j; i < n; ++i) cj[i] -= ap[i] * f;
+      }
+    }
+    return;
+  }
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+  if (BlasTraits<Scalar>::Supported) {
+    blasHerk(int(n), int(k), a, int(lda), c, int(ldc));
+    return;
+  }
+#endif
+  Map<const Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > A(a, n, k, OuterStride<>(lda));
+  Map<Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > C(c, n, n, OuterStride<>(ldc));
+  C.template selfadjointView<Lower>().rankUpdate(A, typename NumTraits<Scalar>::Real(-1));
+}
+
+/** \internal Solves L X = B (adjoint=false) or L^H X = B (adjoint=true) in place, for the n×n
+  * lower triangular L and the n×k block B. */
+template <typename Scalar>
+void trsmLeftLower(bool adjoint, Index n, Index k, const Scalar* l, Index ldl, Scalar* b, Index ldb) {
+  if (n == 0 || k == 0) return;
+  if (n * n * k <= 2 * SmallKernelWork) {
+    for (Index c = 0; c < k; ++c) {
+      Scalar* x = b + c * ldb;
+      if (!adjoint) {
+        for (Index j = 0; j < n; ++j) {
+          const Scalar* lj = l + j * ldl;
+          const Scalar xj = (x[j] /= lj[j]);
+          for (Index i = j + 1; i < n; ++i) x[i] -= lj[i] * xj;
+        }
+      } else {
+        for (Index j = n - 1; j >= 0; --j) {
+          const Scalar* lj = l + j * ldl;
+          Scalar s = x[j];
+          for (Index i = j + 1; i < n; ++i) s -= numext::conj(lj[i]) * x[i];
+          x[j] = s / numext::conj(lj[j]);
+        }
+      }
+    }
+    return;
+  }
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+  if (BlasTraits<Scalar>::Supported) {
+    blasTrsm('L', adjoint ? 'C' : 'N', int(n), int(k), l, int(ldl), b, int(ldb));
+    return;
+  }
+#endif
+  Map<const Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > L(l, n, n, OuterStride<>(ldl));
+  Map<Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > B(b, n, k, OuterStride<>(ldb));
+  if (adjoint)
+    L.template triangularView<Lower>().adjoint().solveInPlace(B);
+  else
+    L.template triangularView<Lower>().solveInPlace(B);
+}
+
+/** \internal C (m×k) = op(A) · B with op(A) = A (m×n block, adjoint=false) or A^H (A is n×m,
+  * adjoint=true); B is n×k. Overwrites C when beta is 0, subtracts from C when beta is 1
+  * (then the product is subtracted: C -= op(A) B). */
+template <typename Scalar>
+void gemmProduct(bool adjoint, bool subtract, Index m, Index k, Index n, const Scalar* a, Index lda,
+                 const Scalar* b, Index ldb, Scalar* c, Index ldc) {
+  if (m == 0 || k == 0) return;
+  if (n == 0) {
+    if (!subtract)
+      for (Index j = 0; j < k; ++j)
+        for (Index i = 0; i < m; ++i) c[i + j * ldc] = Scalar(0);
+    return;
+  }
+  if (m * n * k <= 2 * SmallKernelWork) {
+    for (Index j = 0; j < k; ++j) {
+      Scalar* cj = c + j * ldc;
+      const Scalar* bj = b + j * ldb;
+      if (!adjoint) {
+        if (!subtract)
+          for (Index i = 0; i < m; ++i) cj[i] = Scalar(0);
+        const Scalar sign = subtract ? Scalar(-1) : Scalar(1);
+        for (Index p = 0; p < n; ++p) {
+          const Scalar f = sign * bj[p];
+          const Scalar* ap = a + p * lda;
+          for (Index i = 0; i < m; ++i) cj[i] += ap[i] * f;
+        }
+      } else {
+        for (Index i = 0; i < m; ++i) {
+          const Scalar* ai = a + i * lda;
+          Scalar s(0);
+          for (Index p = 0; p < n; ++p) s += numext::conj(ai[p]) * bj[p];
+          cj[i] = subtract ? cj[i] - s : s;
+        }
+      }
+    }
+    return;
+  }
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+  if (BlasTraits<Scalar>::Supported) {
+    blasGemm(adjoint ? 'C' : 'N', int(m), int(k), int(n), subtract ? Scalar(-1) : Scalar(1), a, int(lda), b,
+             int(ldb), subtract ? Scalar(1) : Scalar(0), c, int(ldc));
+    return;
+  }
+#endif
+  Map<const Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > B(b, n, k, OuterStride<>(ldb));
+  Map<Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > C(c, m, k, OuterStride<>(ldc));
+  if (!adjoint) {
+    Map<const Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > A(a, m, n, OuterStride<>(lda));
+    if (subtract) C.noalias() -= A * B; else C.noalias() = A * B;
+  } else {
+    Map<const Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > A(a, n, m, OuterStride<>(lda));
+    if (subtract) C.noalias() -= A.adjoint() * B; else C.noalias() = A.adjoint() * B;
+  }
+}
+
+}  // namespace updatable_cholesky
+}  // namespace internal
+}  // namespace Eigen
+
+#endif  // EIGEN_UPDATABLE_CHOLESKY_DENSE_KERNELS_H

@@ -1,0 +1,125 @@
+// MatrixAssembly.h — reading the user's sparse matrix into the supernodal factor.
+//
+// The input may be column- or row-major, compressed or not, and the solver reads only its
+// UpLo triangle (diagonal included). Analysis records the input's pattern (to reject a later
+// factorize with another pattern), permutes the kept triangle into the lower triangle of
+// C = P A P^T (conjugating entries that cross the diagonal), and builds, per supernode, a map
+// from the input's value array to offsets in the supernode's dense block. A numeric
+// factorization then scatters values straight from the user's array, with no permuted copy.
+
+#ifndef EIGEN_UPDATABLE_CHOLESKY_MATRIX_ASSEMBLY_H
+#define EIGEN_UPDATABLE_CHOLESKY_MATRIX_ASSEMBLY_H
+
+#include <cstring>
+#include <vector>
+
+namespace Eigen {
+namespace internal {
+namespace updatable_cholesky {
+
+/** \internal The pattern of the input as given (outer starts and inner indices, compressed). */
+template <typename StorageIndex>
+struct InputPattern {
+  Index rows = 0, cols = 0;
+  std::vector<StorageIndex> outer, inner;
+
+  template <typename CompressedMatrix>
+  void assign(const CompressedMatrix& a) {
+    rows = a.rows();
+    cols = a.cols();
+    outer.assign(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1);
+    inner.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
+  }
+  /** True when \a a (compressed) has exactly this pattern. */
+  template <typename CompressedMatrix>
+  bool matches(const CompressedMatrix& a) const {
+    if (a.rows() != rows || a.cols() != cols || Index(a.nonZeros()) != Index(inner.size())) return false;
+    if (std::memcmp(a.outerIndexPtr(), outer.data(), outer.size() * sizeof(StorageIndex)) != 0) return false;
+    return inner.empty() || std::memcmp(a.innerIndexPtr(), inner.data(), inner.size() * sizeof(StorageIndex)) == 0;
+  }
+};
+
+/** \internal The kept triangle of C = P A P^T stored by columns: column j holds rows i >= j and,
+  * for each, the position of its value in the input's value array (~position when the value
+  * must be conjugated because the entry crossed the diagonal). */
+template <typename StorageIndex>
+struct PermutedLowerEntries {
+  CompressedPattern<StorageIndex> pattern;
+  std::vector<Index> source;
+};
+
+/** \internal Permutes the UpLo triangle of the compressed input \a a by \a perm (perm[old] = new)
+  * into the lower triangle. Optionally also returns the strict upper triangle by columns. */
+template <int UpLo, typename CompressedMatrix, typename StorageIndex>
+void permuteTriangle(const CompressedMatrix& a, const std::vector<StorageIndex>& perm,
+                     PermutedLowerEntries<StorageIndex>& lower, CompressedPattern<StorageIndex>* upper) {
+  const Index n = a.cols();
+  const bool rowMajor = CompressedMatrix::IsRowMajor;
+  const StorageIndex* outer = a.outerIndexPtr();
+  const StorageIndex* inner = a.innerIndexPtr();
+  auto forEachKept = [&](auto&& visit) {
+    for (Index o = 0; o < a.outerSize(); ++o)
+      for (Index p = outer[o]; p < outer[o + 1]; ++p) {
+        const Index row = rowMajor ? o : Index(inner[p]);
+        const Index col = rowMajor ? Index(inner[p]) : o;
+        if ((UpLo == Lower && row < col) || (UpLo == Upper && row > col)) continue;
+        const Index pi = perm[row], pj = perm[col];
+        // Entry A(row,col) is C(pi,pj); stored in the lower triangle as C(max,min), conjugated
+        // when it crossed the diagonal.
+        if (pi >= pj)
+          visit(pi, pj, p);
+        else
+          visit(pj, pi, ~p);
+      }
+  };
+  std::vector<Index> count(n + 1, 0), upperCount(n + 1, 0);
+  forEachKept([&](Index i, Index j, Index) {
+    ++count[j + 1];
+    if (i != j) ++upperCount[i + 1];
+  });
+  for (Index j = 0; j < n; ++j) {
+    count[j + 1] += count[j];
+    upperCount[j + 1] += upperCount[j];
+  }
+  lower.pattern.ptr = count;
+  lower.pattern.idx.resize(count[n]);
+  lower.source.resize(count[n]);
+  if (upper) {
+    upper->ptr = upperCount;
+    upper->idx.resize(upperCount[n]);
+  }
+  forEachKept([&](Index i, Index j, Index src) {
+    const Index q = count[j]++;
+    lower.pattern.idx[q] = StorageIndex(i);
+    lower.source[q] = src;
+    if (upper && i != j) upper->idx[upperCount[i]++] = StorageIndex(j);
+  });
+}
+
+/** \internal Builds every supernode's assembly map from the permuted lower entries. */
+template <typename Scalar, typename StorageIndex>
+void buildAssemblyMaps(const PermutedLowerEntries<StorageIndex>& lower, SupernodalFactor<Scalar, StorageIndex>& factor) {
+  std::vector<StorageIndex> position(factor.n, StorageIndex(-1));
+  for (auto& node : factor.nodes) {
+    const Index nr = node.nrows();
+    for (Index k = 0; k < nr; ++k) position[node.rows[k]] = StorageIndex(k);
+    const Index begin = lower.pattern.ptr[node.firstCol], end = lower.pattern.ptr[node.firstCol + node.ncols];
+    node.assemblySource.resize(end - begin);
+    node.assemblyTarget.resize(end - begin);
+    for (Index c = 0; c < node.ncols; ++c) {
+      const Index j = node.firstCol + c;
+      for (Index p = lower.pattern.ptr[j]; p < lower.pattern.ptr[j + 1]; ++p) {
+        const Index src = lower.source[p];
+        const Index offset = c * nr + position[lower.pattern.idx[p]];
+        node.assemblySource[p - begin] = src >= 0 ? src : ~src;
+        node.assemblyTarget[p - begin] = src >= 0 ? offset : ~offset;
+      }
+    }
+  }
+}
+
+}  // namespace updatable_cholesky
+}  // namespace internal
+}  // namespace Eigen
+
+#endif  // EIGEN_UPDATABLE_CHOLESKY_MATRIX_ASSEMBLY_H

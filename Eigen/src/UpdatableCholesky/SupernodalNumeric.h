@@ -1,0 +1,244 @@
+// SupernodalNumeric.h — numeric supernodal factorization (paper §3.1 and §3.4, Algorithm 2 on
+// supernodes), in multifrontal form: every supernode S assembles its columns of the input
+// matrix and the update matrices of its children (extend-add through precomputed relative
+// positions), factors its diagonal block (potrf), solves for the rows below (trsm) and forms its
+// own update matrix U_S = -L21 L21^H (herk) for its parent. Update matrices live on per-thread
+// stacks (postorder makes their lifetimes nested).
+//
+// Parallelism: the supernodal tree is split into independent subtrees of balanced work
+// (SubtreeSchedule), factored at once by worker threads with single-threaded BLAS; the
+// supernodes above them (the top separators) follow with multi-threaded BLAS.
+//
+// Failure: the first pivot that is not positive and finite stops the factorization; the
+// permuted column is reported. The factor is then incomplete and must not be used to solve.
+
+#ifndef EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_NUMERIC_H
+#define EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_NUMERIC_H
+
+#include <algorithm>
+#include <atomic>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+namespace Eigen {
+namespace internal {
+namespace updatable_cholesky {
+
+/** \internal Which supernodes each thread factors: workers take whole subtrees (each subtree
+  * of root r is the supernode range [firstDescendant[r], r]); the rest ("top") is factored
+  * afterwards in postorder with threaded BLAS. */
+struct SubtreeSchedule {
+  int threads = 0;
+  std::vector<std::vector<Index> > workerRoots;  ///< per worker, subtree roots in increasing order
+  std::vector<Index> top;                         ///< remaining supernodes, increasing
+};
+
+/** \internal Splits the tree for \a threads workers: repeatedly replaces the heaviest subtree
+  * by its children until a greedy assignment of subtrees to workers is balanced to 10%. */
+template <typename Scalar, typename StorageIndex>
+SubtreeSchedule makeSchedule(const SupernodalFactor<Scalar, StorageIndex>& f, int threads) {
+  SubtreeSchedule sched;
+  sched.threads = threads;
+  const Index ns = f.count();
+  if (threads <= 1 || ns < 2) {
+    for (Index s = 0; s < ns; ++s) sched.top.push_back(s);
+    return sched;
+  }
+  std::vector<double> work(ns);
+  for (Index s = 0; s < ns; ++s) work[s] = f.nodes[s].flops() + 1.0;
+  for (Index s = 0; s < ns; ++s)
+    if (f.parent[s] != -1) work[f.parent[s]] += work[s];
+  double total = 0;
+  std::vector<Index> frontier;
+  for (Index s = 0; s < ns; ++s)
+    if (f.parent[s] == -1) {
+      frontier.push_back(s);
+      total += work[s];
+    }
+  std::vector<char> isTop(ns, 0);
+  std::vector<std::vector<Index> > bins;
+  for (int iteration = 0; iteration < 4096; ++iteration) {
+    std::sort(frontier.begin(), frontier.end(), [&](Index a, Index b) { return work[a] > work[b]; });
+    bins.assign(threads, std::vector<Index>());
+    std::vector<double> load(threads, 0.0);
+    double frontierWork = 0;
+    for (Index s : frontier) {
+      const int t = int(std::min_element(load.begin(), load.end()) - load.begin());
+      load[t] += work[s];
+      bins[t].push_back(s);
+      frontierWork += work[s];
+    }
+    const double maxLoad = *std::max_element(load.begin(), load.end());
+    if (maxLoad <= 1.1 * frontierWork / threads || frontierWork < 0.5 * total) break;
+    const Index heaviest = frontier.front();
+    if (f.firstChild[heaviest] == -1) break;
+    isTop[heaviest] = 1;
+    frontier.erase(frontier.begin());
+    for (Index c = f.firstChild[heaviest]; c != -1; c = f.nextSibling[c]) frontier.push_back(c);
+  }
+  for (auto& bin : bins) std::sort(bin.begin(), bin.end());
+  sched.workerRoots = bins;
+  for (Index s = 0; s < ns; ++s)
+    if (isTop[s]) sched.top.push_back(s);
+  return sched;
+}
+
+/** \internal A stack of update matrices (one per thread). Offsets, not pointers, so that it
+  * may grow. */
+template <typename Scalar>
+struct UpdateStack {
+  std::vector<Scalar> buffer;
+  Index top = 0;
+  Index push(Index size) {
+    const Index offset = top;
+    top += size;
+    if (top > Index(buffer.size())) buffer.resize((std::max)(top, Index(buffer.size() * 3 / 2)));
+    return offset;
+  }
+};
+
+/** \internal Numeric factorization of a SupernodalFactor. */
+template <typename Scalar, typename StorageIndex>
+class SupernodalNumeric {
+ public:
+  typedef typename NumTraits<Scalar>::Real RealScalar;
+  typedef SupernodalFactor<Scalar, StorageIndex> Factor;
+  typedef Supernode<Scalar, StorageIndex> Node;
+
+  /** Factors all supernodes with values from \a values (the input's value array), computing
+    * the factor of scale*A + offset*I. \returns -1 on success or the permuted column of the
+    * first bad pivot. */
+  Index factorize(Factor& f, const Scalar* values, RealScalar offset, RealScalar scale, int threads) {
+    if (m_schedule.threads != threads || Index(m_location.size()) != f.count()) {
+      m_schedule = makeSchedule(f, threads);
+      m_location.assign(f.count(), Location());
+    }
+    const Index workers = Index(m_schedule.workerRoots.size());
+    m_stacks.resize(workers + 1);
+    for (auto& stack : m_stacks) stack.top = 0;
+    m_failed.store(-1);
+    const int previousBlas = setBlasThreads(workers > 0 ? 1 : threads);
+    if (workers > 0) {
+      std::vector<std::thread> pool;
+      for (Index w = 1; w < workers; ++w)
+        pool.emplace_back([&, w] { factorSubtrees(f, values, offset, scale, w); });
+      factorSubtrees(f, values, offset, scale, 0);
+      for (auto& t : pool) t.join();
+      setBlasThreads(threads);
+    }
+    for (Index s : m_schedule.top)
+      if (!factorNode(f, s, values, offset, scale, workers)) break;
+    if (previousBlas > 0) setBlasThreads(previousBlas);
+    return m_failed.load();
+  }
+
+  /** Bytes of update-matrix workspace currently held. */
+  Index workspaceBytes() const {
+    Index b = 0;
+    for (const auto& s : m_stacks) b += Index(s.buffer.capacity() * sizeof(Scalar));
+    return b;
+  }
+
+  /** Forgets the schedule and releases the workspace (after a new analysis). */
+  void reset() {
+    m_schedule = SubtreeSchedule();
+    m_location.clear();
+    m_stacks.clear();
+  }
+
+ private:
+  struct Location {
+    Index stack = -1, offset = 0;
+  };
+
+  void factorSubtrees(Factor& f, const Scalar* values, RealScalar offset, RealScalar scale, Index worker) {
+    for (Index root : m_schedule.workerRoots[worker])
+      for (Index s = f.firstDescendant[root]; s <= root; ++s)
+        if (!factorNode(f, s, values, offset, scale, worker)) return;
+  }
+
+  /** Assembles, factors and forms the update matrix of supernode s on stack \a stackId. */
+  bool factorNode(Factor& f, Index s, const Scalar* values, RealScalar offset, RealScalar scale, Index stackId) {
+    if (m_failed.load(std::memory_order_relaxed) >= 0) return false;
+    Node& node = f.nodes[s];
+    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+    UpdateStack<Scalar>& stack = m_stacks[stackId];
+    if (node.values.rows() != nr || node.values.cols() != nc) node.values.resize(nr, nc);
+    Scalar* L = node.values.data();
+    std::fill(L, L + nr * nc, Scalar(0));
+    // 1. the input's columns (scaled, shifted)
+    const Index na = Index(node.assemblySource.size());
+    for (Index k = 0; k < na; ++k) {
+      const Index t = node.assemblyTarget[k];
+      const Scalar v = values[node.assemblySource[k]];
+      if (t >= 0)
+        L[t] = scale * v;
+      else
+        L[~t] = scale * numext::conj(v);
+    }
+    if (offset != RealScalar(0))
+      for (Index c = 0; c < nc; ++c) L[c * nr + c] += offset;
+    // 2. this supernode's update matrix, then the children's update matrices added in
+    const Index uOffset = stack.push(m * m);
+    std::fill(stack.buffer.data() + uOffset, stack.buffer.data() + uOffset + m * m, Scalar(0));
+    Index lowestChild = -1;
+    for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) {
+      const Location& loc = m_location[c];
+      extendAdd(f.nodes[c], m_stacks[loc.stack].buffer.data() + loc.offset, L, nr, nc,
+                stack.buffer.data() + uOffset, m);
+      if (loc.stack == stackId && (lowestChild < 0 || loc.offset < lowestChild)) lowestChild = loc.offset;
+    }
+    Index myOffset = uOffset;
+    if (lowestChild >= 0) {  // pop the children: they sit right below on this stack
+      std::memmove(stack.buffer.data() + lowestChild, stack.buffer.data() + uOffset, sizeof(Scalar) * m * m);
+      myOffset = lowestChild;
+      stack.top = lowestChild + m * m;
+    }
+    m_location[s].stack = stackId;
+    m_location[s].offset = myOffset;
+    // 3. dense factorization of the front
+    const Index bad = potrf(nc, L, nr);
+    if (bad >= 0) {
+      Index expected = -1;
+      const Index col = node.firstCol + bad;
+      while (!m_failed.compare_exchange_weak(expected, col) && (expected < 0 || col < expected)) {
+      }
+      return false;
+    }
+    if (m > 0) {
+      trsmRightLowerAdjoint(m, nc, L, nr, L + nc, nr);
+      herkLowerMinus(m, nc, L + nc, nr, stack.buffer.data() + myOffset, m);
+    }
+    return true;
+  }
+
+  /** Adds the child's update matrix (lower triangle, m×m) into the parent's block and update
+    * matrix, through the child's precomputed positions in the parent's rows. */
+  static void extendAdd(const Node& child, const Scalar* U, Scalar* L, Index nr, Index nc, Scalar* P, Index pm) {
+    const Index m = child.below();
+    const StorageIndex* pos = child.parentPosition.data();
+    for (Index k = 0; k < m; ++k) {
+      const Index t = pos[k];
+      const Scalar* src = U + k * m;
+      if (t < nc) {
+        Scalar* dst = L + t * nr;
+        for (Index i = k; i < m; ++i) dst[pos[i]] += src[i];
+      } else {
+        Scalar* dst = P + (t - nc) * pm - nc;
+        for (Index i = k; i < m; ++i) dst[pos[i]] += src[i];
+      }
+    }
+  }
+
+  SubtreeSchedule m_schedule;
+  std::vector<Location> m_location;
+  std::vector<UpdateStack<Scalar> > m_stacks;
+  std::atomic<Index> m_failed{-1};
+};
+
+}  // namespace updatable_cholesky
+}  // namespace internal
+}  // namespace Eigen
+
+#endif  // EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_NUMERIC_H

@@ -1,0 +1,60 @@
+// SupernodalSolve.h — supernodal forward and backward substitution with a block of right-hand
+// sides (paper §3.1: the solve that follows every factorization or update). Forward: for each
+// supernode in postorder, X_S := L11^{-1} X_S, then the rows below receive -L21 X_S (gathered
+// product, scattered subtraction). Backward: in reverse order, X_S -= L21^H X_below, then
+// X_S := L11^{-H} X_S. X is in the permuted numbering, column-major with leading dimension ldx.
+
+#ifndef EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_SOLVE_H
+#define EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_SOLVE_H
+
+#include <vector>
+
+namespace Eigen {
+namespace internal {
+namespace updatable_cholesky {
+
+/** \internal X := L^{-1} X for the k columns of X. \a work must hold maxBelow()*k scalars. */
+template <typename Scalar, typename StorageIndex>
+void forwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Index k, Scalar* work) {
+  for (const auto& node : f.nodes) {
+    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+    const Scalar* L = node.values.data();
+    Scalar* xs = X + node.firstCol;
+    trsmLeftLower(false, nc, k, L, nr, xs, ldx);
+    if (m == 0) continue;
+    gemmProduct(false, false, m, k, nc, L + nc, nr, xs, ldx, work, m);
+    const StorageIndex* rows = node.rows.data() + nc;
+    for (Index c = 0; c < k; ++c) {
+      Scalar* xc = X + c * ldx;
+      const Scalar* wc = work + c * m;
+      for (Index i = 0; i < m; ++i) xc[rows[i]] -= wc[i];
+    }
+  }
+}
+
+/** \internal X := L^{-H} X for the k columns of X. \a work must hold maxBelow()*k scalars. */
+template <typename Scalar, typename StorageIndex>
+void backwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Index k, Scalar* work) {
+  for (Index s = f.count() - 1; s >= 0; --s) {
+    const auto& node = f.nodes[s];
+    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+    const Scalar* L = node.values.data();
+    Scalar* xs = X + node.firstCol;
+    if (m > 0) {
+      const StorageIndex* rows = node.rows.data() + nc;
+      for (Index c = 0; c < k; ++c) {
+        const Scalar* xc = X + c * ldx;
+        Scalar* wc = work + c * m;
+        for (Index i = 0; i < m; ++i) wc[i] = xc[rows[i]];
+      }
+      gemmProduct(true, true, nc, k, m, L + nc, nr, work, m, xs, ldx);
+    }
+    trsmLeftLower(true, nc, k, L, nr, xs, ldx);
+  }
+}
+
+}  // namespace updatable_cholesky
+}  // namespace internal
+}  // namespace Eigen
+
+#endif  // EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_SOLVE_H

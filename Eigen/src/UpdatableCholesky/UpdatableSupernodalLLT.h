@@ -1,0 +1,372 @@
+// UpdatableSupernodalLLT.h — the public solver class: a supernodal LL^T (LL^H) factorization
+// of a sparse symmetric (Hermitian) positive definite matrix with the API of Eigen's
+// SimplicialLLT. It ties together the symbolic analysis (SupernodalSymbolic.h), the factor
+// storage (SupernodalFactor.h), the input assembly (MatrixAssembly.h), the numeric
+// factorization (SupernodalNumeric.h) and the solve (SupernodalSolve.h). Paper §3.
+
+#ifndef EIGEN_UPDATABLE_SUPERNODAL_LLT_H
+#define EIGEN_UPDATABLE_SUPERNODAL_LLT_H
+
+#include <cmath>
+#include <vector>
+
+namespace Eigen {
+
+template <typename MatrixType_, int UpLo_ = Lower,
+          typename Ordering_ = AMDOrdering<typename MatrixType_::StorageIndex> >
+class UpdatableSupernodalLLT;
+
+/** \ingroup UpdatableCholesky_Module
+  * \class UpdatableSupernodalLLT
+  * \brief A supernodal sparse Cholesky factorization LL^T of a selfadjoint positive definite
+  * matrix, stored one supernode per object so that it can be updated in place.
+  *
+  * The factorization is of \f$ P A P^{-1} \f$ where P is the fill-reducing ordering given by
+  * \c Ordering_ composed with a postorder of the elimination tree. Columns with similar
+  * patterns are grouped into relaxed supernodes (see SupernodeRelaxation) and factored with
+  * dense BLAS-3 kernels; independent subtrees are factored on several threads.
+  *
+  * It is a drop-in replacement for SimplicialLLT:
+  * \code
+  * UpdatableSupernodalLLT<SparseMatrix<double> > llt(A);
+  * if (llt.info() != Success) { ... }
+  * x = llt.solve(b);
+  * \endcode
+  *
+  * \tparam MatrixType_ the type of the sparse matrix A (SparseMatrix, row- or column-major)
+  * \tparam UpLo_ the triangle of A that is read: Lower or Upper
+  * \tparam Ordering_ the fill-reducing ordering: AMDOrdering (default), NaturalOrdering,
+  *         MetisOrdering, or any functor with `void operator()(const Matrix&, PermutationMatrix&)`
+  *
+  * \implsparsesolverconcept
+  * \sa SimplicialLLT, CholmodSupernodalLLT
+  */
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_> > {
+  typedef SparseSolverBase<UpdatableSupernodalLLT> Base;
+  using Base::m_isInitialized;
+
+ public:
+  typedef MatrixType_ MatrixType;
+  typedef Ordering_ OrderingType;
+  enum { UpLo = UpLo_ };
+  typedef typename MatrixType::Scalar Scalar;
+  typedef typename MatrixType::RealScalar RealScalar;
+  typedef typename MatrixType::StorageIndex StorageIndex;
+  typedef SparseMatrix<Scalar, ColMajor, StorageIndex> CholMatrixType;
+  typedef TriangularView<const CholMatrixType, Eigen::Lower> MatrixL;
+  typedef TriangularView<const typename CholMatrixType::AdjointReturnType, Eigen::Upper> MatrixU;
+  typedef PermutationMatrix<Dynamic, Dynamic, StorageIndex> PermutationType;
+  enum { ColsAtCompileTime = MatrixType::ColsAtCompileTime, MaxColsAtCompileTime = MatrixType::MaxColsAtCompileTime };
+
+  EIGEN_STATIC_ASSERT((UpLo_ & (Lower | Upper)) == Lower || (UpLo_ & (Lower | Upper)) == Upper,
+                      UPLO_MUST_BE_LOWER_OR_UPPER)
+
+  /** Default constructor: call compute() or analyzePattern()/factorize() before solving. */
+  UpdatableSupernodalLLT() { init(); }
+
+  /** Constructs and computes the factorization of \a matrix (see compute()). */
+  explicit UpdatableSupernodalLLT(const MatrixType& matrix) {
+    init();
+    compute(matrix);
+  }
+
+  /** Analyses the pattern of \a matrix and factors it. \returns a reference to *this. */
+  UpdatableSupernodalLLT& compute(const MatrixType& matrix) {
+    analyzePattern(matrix);
+    if (m_analysisIsOk) factorize(matrix);
+    return *this;
+  }
+
+  /** Symbolic analysis: fill-reducing ordering, elimination tree, postorder, column counts,
+    * relaxed supernodes and their row structures. The result serves every factorize() of a
+    * matrix with the same pattern. */
+  void analyzePattern(const MatrixType& matrix);
+
+  /** Numeric factorization of \a matrix, which must have the pattern given to analyzePattern().
+    * Sets info() to Success, to NumericalIssue when the matrix is not positive definite (or
+    * holds NaN/Inf; see failedColumn()), or to InvalidInput when the pattern differs. */
+  void factorize(const MatrixType& matrix);
+
+  /** \returns Success, NumericalIssue or InvalidInput for the last analysis/factorization. */
+  ComputationInfo info() const {
+    eigen_assert(m_isInitialized && "UpdatableSupernodalLLT is not initialized: call compute() first.");
+    return m_info;
+  }
+
+  /** \returns the number of rows of the factored matrix. */
+  Index rows() const { return m_n; }
+  /** \returns the number of columns of the factored matrix. */
+  Index cols() const { return m_n; }
+
+  /** \returns the lower triangular factor L of \f$ P A P^{-1} = L L^* \f$, as a triangular view
+    * of a sparse matrix assembled from the supernodes on first call after each factorization. */
+  const MatrixL matrixL() const {
+    eigen_assert(m_factorizationIsOk && "UpdatableSupernodalLLT::matrixL(): no valid factorization.");
+    buildSparseL();
+    return MatrixL(m_sparseL);
+  }
+
+  /** \returns the upper triangular factor \f$ U = L^* \f$. */
+  const MatrixU matrixU() const {
+    eigen_assert(m_factorizationIsOk && "UpdatableSupernodalLLT::matrixU(): no valid factorization.");
+    buildSparseL();
+    return MatrixU(m_sparseL.adjoint());
+  }
+
+  /** \returns the permutation P such that the factor is that of \f$ P A P^{-1} \f$. */
+  const PermutationType& permutationP() const { return m_P; }
+  /** \returns the inverse of permutationP(). */
+  const PermutationType& permutationPinv() const { return m_Pinv; }
+
+  /** \returns the determinant of the (shifted) matrix. */
+  Scalar determinant() const {
+    eigen_assert(m_factorizationIsOk && "UpdatableSupernodalLLT::determinant(): no valid factorization.");
+    RealScalar det(1);
+    forEachDiagonal([&](RealScalar d) { det *= d * d; });
+    return Scalar(det);
+  }
+
+  /** \returns the natural logarithm of the determinant (no overflow for large matrices). */
+  RealScalar logDeterminant() const {
+    eigen_assert(m_factorizationIsOk && "UpdatableSupernodalLLT::logDeterminant(): no valid factorization.");
+    RealScalar sum(0);
+    forEachDiagonal([&](RealScalar d) { sum += std::log(d); });
+    return RealScalar(2) * sum;
+  }
+
+  /** Factor \f$ scale \cdot A + offset \cdot I \f$ instead of A from the next factorize() on.
+    * \returns a reference to *this. */
+  UpdatableSupernodalLLT& setShift(const RealScalar& offset, const RealScalar& scale = 1) {
+    m_shiftOffset = offset;
+    m_shiftScale = scale;
+    return *this;
+  }
+
+  /** \returns the ordering functor used by analyzePattern(), to configure it beforehand. */
+  OrderingType& ordering() { return m_ordering; }
+
+  /** \returns the index (in A's numbering) of the column whose pivot was not positive and finite
+    * in the last failed factorization, or -1. */
+  Index failedColumn() const { return m_failedColumn; }
+
+  /** \returns the number of stored entries of L (relaxed supernodes store some explicit zeros). */
+  Index nonZerosL() const { return m_factor.nonZeros(); }
+
+  /** \returns the number of supernodes. */
+  Index supernodeCount() const { return m_factor.count(); }
+
+  /** \returns the floating-point operations of one numeric factorization (dense kernels). */
+  double factorizationFlops() const { return m_factor.flops(); }
+
+  /** Sets the number of threads of factorize() (independent subtrees at once, threaded BLAS on
+    * the top separators). 0 means Eigen::nbThreads(). */
+  void setThreadCount(int threads) { m_threads = threads < 0 ? 0 : threads; }
+  /** \returns the number of threads factorize() uses. */
+  int threadCount() const { return m_threads > 0 ? m_threads : Eigen::nbThreads(); }
+
+  /** Sets the relaxed-amalgamation thresholds used by the next analyzePattern(). */
+  void setRelaxation(const SupernodeRelaxation& relaxation) { m_relaxation = relaxation; }
+  /** \returns the relaxed-amalgamation thresholds. */
+  const SupernodeRelaxation& relaxation() const { return m_relaxation; }
+
+  /** \returns the bytes held by the factor (values and row indices) and its workspace. */
+  Index memoryBytes() const {
+    Index b = m_numeric.workspaceBytes();
+    for (const auto& node : m_factor.nodes)
+      b += Index(node.values.size() * sizeof(Scalar) + node.rows.capacity() * sizeof(StorageIndex) +
+                 node.parentPosition.capacity() * sizeof(StorageIndex) +
+                 (node.assemblySource.capacity() + node.assemblyTarget.capacity()) * sizeof(Index));
+    return b;
+  }
+
+#ifndef EIGEN_PARSED_BY_DOXYGEN
+  using Base::_solve_impl;
+  /** \internal dense right-hand sides */
+  template <typename Rhs, typename Dest>
+  void _solve_impl(const MatrixBase<Rhs>& b, MatrixBase<Dest>& dest) const {
+    eigen_assert(m_factorizationIsOk &&
+                 "UpdatableSupernodalLLT::solve(): the factorization is missing or failed; check info().");
+    eigen_assert(m_n == b.rows());
+    Matrix<Scalar, Dynamic, Dynamic> x = m_P * b;
+    solveInPlacePermuted(x);
+    dest = m_Pinv * x;
+  }
+#endif
+
+  /** Solves \f$ L L^* x = b \f$ in place for a block already in the permuted numbering. */
+  void solveInPlacePermuted(Matrix<Scalar, Dynamic, Dynamic>& x) const {
+    const Index k = x.cols();
+    if (m_n == 0 || k == 0) return;
+    std::vector<Scalar> work(m_maxBelow * k + 1);
+    internal::updatable_cholesky::forwardSolve(m_factor, x.data(), x.rows(), k, work.data());
+    internal::updatable_cholesky::backwardSolve(m_factor, x.data(), x.rows(), k, work.data());
+  }
+
+ protected:
+  void init() {
+    m_info = Success;
+    m_analysisIsOk = false;
+    m_factorizationIsOk = false;
+    m_n = 0;
+    m_shiftOffset = 0;
+    m_shiftScale = 1;
+    m_threads = 0;
+    m_failedColumn = -1;
+    m_maxBelow = 0;
+    m_sparseLIsValid = false;
+  }
+
+  template <typename F>
+  void forEachDiagonal(F&& f) const {
+    for (const auto& node : m_factor.nodes)
+      for (Index c = 0; c < node.ncols; ++c) f(numext::real(node.values(c, c)));
+  }
+
+  void buildSparseL() const;
+
+  typedef internal::updatable_cholesky::SupernodalFactor<Scalar, StorageIndex> Factor;
+  Factor m_factor;
+  internal::updatable_cholesky::SupernodalNumeric<Scalar, StorageIndex> m_numeric;
+  internal::updatable_cholesky::InputPattern<StorageIndex> m_pattern;
+  PermutationType m_P, m_Pinv;
+  OrderingType m_ordering;
+  SupernodeRelaxation m_relaxation;
+  ComputationInfo m_info;
+  bool m_analysisIsOk, m_factorizationIsOk;
+  Index m_n, m_failedColumn, m_maxBelow;
+  RealScalar m_shiftOffset, m_shiftScale;
+  int m_threads;
+  mutable CholMatrixType m_sparseL;
+  mutable bool m_sparseLIsValid;
+};
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const MatrixType& a) {
+  using namespace internal::updatable_cholesky;
+  eigen_assert(a.rows() == a.cols() && "UpdatableSupernodalLLT: the matrix must be square.");
+  m_isInitialized = true;
+  m_analysisIsOk = false;
+  m_factorizationIsOk = false;
+  m_sparseLIsValid = false;
+  m_failedColumn = -1;
+  if (a.rows() != a.cols()) {
+    m_info = InvalidInput;
+    return;
+  }
+  const Index n = a.rows();
+  m_n = n;
+  // A compressed view of the input (copied only when the user's matrix is not compressed).
+  MatrixType copy;
+  const MatrixType* pa = &a;
+  if (!a.isCompressed()) {
+    copy = a;
+    copy.makeCompressed();
+    pa = &copy;
+  }
+  m_pattern.assign(*pa);
+
+  // 1. fill-reducing ordering on the full symmetric pattern, as Eigen's solvers do
+  PermutationType orderingPinv;
+  {
+    CholMatrixType full;
+    full = pa->template selfadjointView<UpLo_>();
+    m_ordering(full, orderingPinv);
+  }
+  std::vector<StorageIndex> perm(n);
+  if (orderingPinv.size() == n) {
+    for (Index k = 0; k < n; ++k) perm[orderingPinv.indices()[k]] = StorageIndex(k);
+  } else {
+    for (Index k = 0; k < n; ++k) perm[k] = StorageIndex(k);
+  }
+  // 2. elimination tree of the ordered matrix, composed with its postorder
+  PermutedLowerEntries<StorageIndex> lower;
+  CompressedPattern<StorageIndex> upper;
+  std::vector<StorageIndex> parent, post;
+  permuteTriangle<UpLo_>(*pa, perm, lower, &upper);
+  eliminationTree(upper, parent);
+  postorder(parent, post);
+  std::vector<StorageIndex> postInverse(n);
+  for (Index k = 0; k < n; ++k) postInverse[post[k]] = StorageIndex(k);
+  for (Index i = 0; i < n; ++i) perm[i] = postInverse[perm[i]];
+  std::vector<StorageIndex> postParent(n);
+  for (Index k = 0; k < n; ++k) postParent[k] = parent[post[k]] == -1 ? StorageIndex(-1) : postInverse[parent[post[k]]];
+  permuteTriangle<UpLo_>(*pa, perm, lower, static_cast<CompressedPattern<StorageIndex>*>(0));
+  // 3. column counts, relaxed supernodes, row structures, factor storage and assembly maps
+  std::vector<StorageIndex> colCount;
+  columnCounts(lower.pattern, postParent, colCount);
+  SupernodalPartition<StorageIndex> partition;
+  relaxedSupernodes(postParent, colCount, m_relaxation, partition.start);
+  supernodeRowStructure(lower.pattern, postParent, partition);
+  m_factor = Factor();
+  m_factor.build(partition);
+  buildAssemblyMaps(lower, m_factor);
+  m_numeric.reset();
+  m_maxBelow = m_factor.maxBelow();
+
+  m_P.resize(n);
+  for (Index i = 0; i < n; ++i) m_P.indices()[i] = perm[i];
+  m_Pinv = m_P.inverse();
+  m_info = Success;
+  m_analysisIsOk = true;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::factorize(const MatrixType& a) {
+  eigen_assert(m_analysisIsOk && "UpdatableSupernodalLLT::factorize(): call analyzePattern() first.");
+  m_isInitialized = true;
+  m_factorizationIsOk = false;
+  m_sparseLIsValid = false;
+  m_failedColumn = -1;
+  if (!m_analysisIsOk) {
+    m_info = InvalidInput;
+    return;
+  }
+  MatrixType copy;
+  const MatrixType* pa = &a;
+  if (!a.isCompressed()) {
+    copy = a;
+    copy.makeCompressed();
+    pa = &copy;
+  }
+  if (!m_pattern.matches(*pa)) {
+    m_info = InvalidInput;
+    return;
+  }
+  const Index bad = m_numeric.factorize(m_factor, pa->valuePtr(), m_shiftOffset, m_shiftScale, threadCount());
+  if (bad >= 0) {
+    m_info = NumericalIssue;
+    m_failedColumn = m_Pinv.indices()[bad];
+    return;
+  }
+  m_info = Success;
+  m_factorizationIsOk = true;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildSparseL() const {
+  if (m_sparseLIsValid) return;
+  m_sparseL.resize(m_n, m_n);
+  m_sparseL.resizeNonZeros(0);
+  m_sparseL.reserve(m_factor.nonZeros());
+  Index nnz = 0;
+  StorageIndex* outer = m_sparseL.outerIndexPtr();
+  m_sparseL.resizeNonZeros(m_factor.nonZeros());
+  for (const auto& node : m_factor.nodes) {
+    const Index nr = node.nrows();
+    for (Index c = 0; c < node.ncols; ++c) {
+      outer[node.firstCol + c] = StorageIndex(nnz);
+      for (Index r = c; r < nr; ++r) {
+        m_sparseL.innerIndexPtr()[nnz] = node.rows[r];
+        m_sparseL.valuePtr()[nnz] = node.values(r, c);
+        ++nnz;
+      }
+    }
+  }
+  outer[m_n] = StorageIndex(nnz);
+  m_sparseLIsValid = true;
+}
+
+}  // namespace Eigen
+
+#endif  // EIGEN_UPDATABLE_SUPERNODAL_LLT_H
