@@ -48,6 +48,18 @@ void cgemm_(const char*, const char*, const int*, const int*, const int*, const 
             const int*, const void*, const int*, const void*, void*, const int*);
 void zgemm_(const char*, const char*, const int*, const int*, const int*, const void*, const void*,
             const int*, const void*, const int*, const void*, void*, const int*);
+void sgemv_(const char*, const int*, const int*, const float*, const float*, const int*, const float*,
+            const int*, const float*, float*, const int*);
+void dgemv_(const char*, const int*, const int*, const double*, const double*, const int*, const double*,
+            const int*, const double*, double*, const int*);
+void cgemv_(const char*, const int*, const int*, const void*, const void*, const int*, const void*,
+            const int*, const void*, void*, const int*);
+void zgemv_(const char*, const int*, const int*, const void*, const void*, const int*, const void*,
+            const int*, const void*, void*, const int*);
+void strsv_(const char*, const char*, const char*, const int*, const float*, const int*, float*, const int*);
+void dtrsv_(const char*, const char*, const char*, const int*, const double*, const int*, double*, const int*);
+void ctrsv_(const char*, const char*, const char*, const int*, const void*, const int*, void*, const int*);
+void ztrsv_(const char*, const char*, const char*, const int*, const void*, const int*, void*, const int*);
 // OpenBLAS thread control; weak so that any other BLAS links too (then these are null).
 void openblas_set_num_threads(int) __attribute__((weak));
 int openblas_get_num_threads(void) __attribute__((weak));
@@ -117,6 +129,21 @@ inline void blasHerk(int n, int k, const std::complex<double>* a, int lda, std::
                        T beta, T* c, int ldc) {                                                      \
     F(&ta, "N", &m, &n, &k, &alpha, a, &lda, b, &ldb, &beta, c, &ldc);                               \
   }
+#define EIGEN_UC_GEMV(T, F, TRSV)                                                                    \
+  inline void blasGemv(char ta, int m, int n, T alpha, const T* a, int lda, const T* x, T beta, T* y) {  \
+    const int one = 1;                                                                               \
+    F(&ta, &m, &n, &alpha, a, &lda, x, &one, &beta, y, &one);                                        \
+  }                                                                                                  \
+  inline void blasTrsv(char ta, int n, const T* a, int lda, T* x) {                                  \
+    const int one = 1;                                                                               \
+    TRSV("L", &ta, "N", &n, a, &lda, x, &one);                                                       \
+  }
+EIGEN_UC_GEMV(float, sgemv_, strsv_)
+EIGEN_UC_GEMV(double, dgemv_, dtrsv_)
+EIGEN_UC_GEMV(std::complex<float>, cgemv_, ctrsv_)
+EIGEN_UC_GEMV(std::complex<double>, zgemv_, ztrsv_)
+#undef EIGEN_UC_GEMV
+
 EIGEN_UC_GEMM(float, sgemm_)
 EIGEN_UC_GEMM(double, dgemm_)
 EIGEN_UC_GEMM(std::complex<float>, cgemm_)
@@ -329,6 +356,55 @@ void gemmProduct(bool adjoint, bool subtract, Index m, Index k, Index n, const S
     Map<const Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > A(a, n, m, OuterStride<>(lda));
     if (subtract) C.noalias() -= A.adjoint() * B; else C.noalias() = A.adjoint() * B;
   }
+}
+
+/** \internal Below this many matrix entries a matrix-vector kernel uses Eigen's inline code. */
+enum { SmallVectorKernelEntries = 4096 };
+
+/** \internal y = A x (adjoint=false; A is m×n) or y -= A^H x (adjoint=true; A is m×n, y has n
+  * entries): the two products of a one-column supernodal solve. */
+template <typename Scalar>
+void gemvProduct(bool adjoint, Index m, Index n, const Scalar* a, Index lda, const Scalar* x, Scalar* y) {
+  if (m == 0 || n == 0) {
+    if (!adjoint)
+      for (Index i = 0; i < m; ++i) y[i] = Scalar(0);
+    return;
+  }
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+  if (BlasTraits<Scalar>::Supported && m * n >= SmallVectorKernelEntries) {
+    blasGemv(adjoint ? 'C' : 'N', int(m), int(n), adjoint ? Scalar(-1) : Scalar(1), a, int(lda), x,
+             adjoint ? Scalar(1) : Scalar(0), y);
+    return;
+  }
+#endif
+  typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
+  typedef Matrix<Scalar, Dynamic, 1> Vector;
+  Map<const Dense, 0, OuterStride<> > A(a, m, n, OuterStride<>(lda));
+  if (!adjoint)
+    Map<Vector>(y, m).noalias() = A * Map<const Vector>(x, n);
+  else
+    Map<Vector>(y, n).noalias() -= A.adjoint() * Map<const Vector>(x, m);
+}
+
+/** \internal x := L^{-1} x (adjoint=false) or L^{-H} x (adjoint=true) for the n×n lower
+  * triangular L. */
+template <typename Scalar>
+void trsvLower(bool adjoint, Index n, const Scalar* l, Index ldl, Scalar* x) {
+  if (n == 0) return;
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+  if (BlasTraits<Scalar>::Supported && n * n >= SmallVectorKernelEntries) {
+    blasTrsv(adjoint ? 'C' : 'N', int(n), l, int(ldl), x);
+    return;
+  }
+#endif
+  typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
+  typedef Matrix<Scalar, Dynamic, 1> Vector;
+  Map<const Dense, 0, OuterStride<> > L(l, n, n, OuterStride<>(ldl));
+  Map<Vector> v(x, n);
+  if (adjoint)
+    L.template triangularView<Lower>().adjoint().solveInPlace(v);
+  else
+    L.template triangularView<Lower>().solveInPlace(v);
 }
 
 }  // namespace updatable_cholesky

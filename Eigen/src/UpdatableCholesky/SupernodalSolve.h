@@ -13,9 +13,42 @@ namespace Eigen {
 namespace internal {
 namespace updatable_cholesky {
 
+/** \internal x := L^{-1} x for one right-hand side (matrix-vector kernels). */
+template <typename Scalar, typename StorageIndex>
+void forwardSolveVector(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* x, Scalar* work) {
+  for (const auto& node : f.nodes) {
+    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+    const Scalar* L = node.values.data();
+    Scalar* xs = x + node.firstCol;
+    trsvLower(false, nc, L, nr, xs);
+    if (m == 0) continue;
+    gemvProduct(false, m, nc, L + nc, nr, xs, work);
+    const StorageIndex* rows = node.rows.data() + nc;
+    for (Index i = 0; i < m; ++i) x[rows[i]] -= work[i];
+  }
+}
+
+/** \internal x := L^{-H} x for one right-hand side (matrix-vector kernels). */
+template <typename Scalar, typename StorageIndex>
+void backwardSolveVector(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* x, Scalar* work) {
+  for (Index s = f.count() - 1; s >= 0; --s) {
+    const auto& node = f.nodes[s];
+    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+    const Scalar* L = node.values.data();
+    Scalar* xs = x + node.firstCol;
+    if (m > 0) {
+      const StorageIndex* rows = node.rows.data() + nc;
+      for (Index i = 0; i < m; ++i) work[i] = x[rows[i]];
+      gemvProduct(true, m, nc, L + nc, nr, work, xs);
+    }
+    trsvLower(true, nc, L, nr, xs);
+  }
+}
+
 /** \internal X := L^{-1} X for the k columns of X. \a work must hold maxBelow()*k scalars. */
 template <typename Scalar, typename StorageIndex>
 void forwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Index k, Scalar* work) {
+  if (k == 1) return forwardSolveVector(f, X, work);
   for (const auto& node : f.nodes) {
     const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
     const Scalar* L = node.values.data();
@@ -35,6 +68,7 @@ void forwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, In
 /** \internal X := L^{-H} X for the k columns of X. \a work must hold maxBelow()*k scalars. */
 template <typename Scalar, typename StorageIndex>
 void backwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Index k, Scalar* work) {
+  if (k == 1) return backwardSolveVector(f, X, work);
   for (Index s = f.count() - 1; s >= 0; --s) {
     const auto& node = f.nodes[s];
     const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;

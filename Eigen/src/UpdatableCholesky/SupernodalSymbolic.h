@@ -150,7 +150,9 @@ struct SupernodalPartition {
 };
 
 /** \internal Groups the columns of a postordered tree into fundamental supernodes, then merges
-  * each supernode into its parent where the relaxation rule allows (CHOLMOD's rule). */
+  * each supernode into the supernode that follows it when that one contains its parent and the
+  * relaxation rule allows (CHOLMOD's rule). Only the last column of a resulting supernode has
+  * its etree parent outside it. */
 template <typename StorageIndex>
 void relaxedSupernodes(const std::vector<StorageIndex>& parent, const std::vector<StorageIndex>& colCount,
                        const SupernodeRelaxation& relax, std::vector<StorageIndex>& start) {
@@ -179,15 +181,28 @@ void relaxedSupernodes(const std::vector<StorageIndex>& parent, const std::vecto
     for (Index j = fs[s]; j < fs[s + 1]; ++j) e += double(colCount[j]);
     entries[s] = e;
   }
-  std::vector<char> mergedIntoPrevious(nfs + 1, 0);
+  // Going down, s may join the group that starts at s+1 when its parent lies in that group
+  // (merged[t] links a fundamental supernode to the group it joined, with path compression).
+  std::vector<StorageIndex> fsParent(nfs), merged(nfs, StorageIndex(-1));
+  for (Index s = 0; s < nfs; ++s) {
+    const Index p = parent[fs[s + 1] - 1];
+    fsParent[s] = p == -1 ? StorageIndex(-1) : colToFs[p];
+  }
   for (Index s = nfs - 2; s >= 0; --s) {
-    const Index last = fs[s + 1] - 1;
-    if (parent[last] == -1 || colToFs[parent[last]] != s + 1) continue;
+    if (fsParent[s] == -1) continue;
+    Index group = fsParent[s];
+    while (merged[group] != -1) group = merged[group];
+    for (Index t = fsParent[s]; merged[t] != -1;) {
+      const Index next = merged[t];
+      merged[t] = StorageIndex(group);
+      t = next;
+    }
+    if (group != s + 1) continue;
     const double ns = cols[s] + cols[s + 1];
     const double stored = ns * (ns + 1) / 2 + ns * below[s + 1];
     const double zeros = stored - (entries[s] + entries[s + 1]);
     const double fraction = stored > 0 ? zeros / stored : 0;
-    bool merge = ns <= relax.nrelax[0];
+    bool merge = ns <= relax.nrelax[0] || zeros <= 0;
     if (!merge)
       merge = (ns <= relax.nrelax[1] && fraction < relax.zrelax[0]) ||
               (ns <= relax.nrelax[2] && fraction < relax.zrelax[1]) || fraction < relax.zrelax[2];
@@ -195,12 +210,12 @@ void relaxedSupernodes(const std::vector<StorageIndex>& parent, const std::vecto
       cols[s] = ns;
       below[s] = below[s + 1];
       entries[s] += entries[s + 1];
-      mergedIntoPrevious[s + 1] = 1;
+      merged[s + 1] = StorageIndex(s);
     }
   }
   start.clear();
   for (Index s = 0; s < nfs; ++s)
-    if (!mergedIntoPrevious[s]) start.push_back(fs[s]);
+    if (merged[s] == -1) start.push_back(fs[s]);
   start.push_back(StorageIndex(n));
 }
 

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Runs the main demo: installs dependencies, builds in build/ and runs examples/demo on the
+# default mesh shipped in data/ (or on the mesh given as the first argument).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j2 --target demo
+./build/examples/demo "$@"
