@@ -191,7 +191,7 @@ Index potrf(Index n, Scalar* a, Index lda) {
   if (n == 0) return -1;
   if (n * n * n <= 3 * SmallKernelWork) return smallPotrf(n, a, lda);
 #ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
-  if (BlasTraits<Scalar>::Supported) {
+  if constexpr (BlasTraits<Scalar>::Supported) {
     int info = 0;
     blasPotrf(int(n), a, int(lda), &info);
     if (info > 0) return info - 1;
@@ -228,7 +228,7 @@ void trsmRightLowerAdjoint(Index m, Index n, const Scalar* l, Index ldl, Scalar*
     return;
   }
 #ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
-  if (BlasTraits<Scalar>::Supported) {
+  if constexpr (BlasTraits<Scalar>::Supported) {
     blasTrsm('R', 'C', int(m), int(n), l, int(ldl), b, int(ldb));
     return;
   }
@@ -254,7 +254,7 @@ void herkLowerMinus(Index n, Index k, const Scalar* a, Index lda, Scalar* c, Ind
     return;
   }
 #ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
-  if (BlasTraits<Scalar>::Supported) {
+  if constexpr (BlasTraits<Scalar>::Supported) {
     blasHerk(int(n), int(k), a, int(lda), c, int(ldc));
     return;
   }
@@ -290,7 +290,7 @@ void trsmLeftLower(bool adjoint, Index n, Index k, const Scalar* l, Index ldl, S
     return;
   }
 #ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
-  if (BlasTraits<Scalar>::Supported) {
+  if constexpr (BlasTraits<Scalar>::Supported) {
     blasTrsm('L', adjoint ? 'C' : 'N', int(n), int(k), l, int(ldl), b, int(ldb));
     return;
   }
@@ -341,7 +341,7 @@ void gemmProduct(bool adjoint, bool subtract, Index m, Index k, Index n, const S
     return;
   }
 #ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
-  if (BlasTraits<Scalar>::Supported) {
+  if constexpr (BlasTraits<Scalar>::Supported) {
     blasGemm(adjoint ? 'C' : 'N', int(m), int(k), int(n), subtract ? Scalar(-1) : Scalar(1), a, int(lda), b,
              int(ldb), subtract ? Scalar(1) : Scalar(0), c, int(ldc));
     return;
@@ -371,7 +371,7 @@ void gemvProduct(bool adjoint, Index m, Index n, const Scalar* a, Index lda, con
     return;
   }
 #ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
-  if (BlasTraits<Scalar>::Supported && m * n >= SmallVectorKernelEntries) {
+  if constexpr (BlasTraits<Scalar>::Supported) if (m * n >= SmallVectorKernelEntries) {
     blasGemv(adjoint ? 'C' : 'N', int(m), int(n), adjoint ? Scalar(-1) : Scalar(1), a, int(lda), x,
              adjoint ? Scalar(1) : Scalar(0), y);
     return;
@@ -392,7 +392,7 @@ template <typename Scalar>
 void trsvLower(bool adjoint, Index n, const Scalar* l, Index ldl, Scalar* x) {
   if (n == 0) return;
 #ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
-  if (BlasTraits<Scalar>::Supported && n * n >= SmallVectorKernelEntries) {
+  if constexpr (BlasTraits<Scalar>::Supported) if (n * n >= SmallVectorKernelEntries) {
     blasTrsv(adjoint ? 'C' : 'N', int(n), l, int(ldl), x);
     return;
   }

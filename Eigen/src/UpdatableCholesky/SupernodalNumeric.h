@@ -34,6 +34,9 @@ struct SubtreeSchedule {
   std::vector<Index> top;                         ///< remaining supernodes, increasing
 };
 
+/** \internal Below this many flops a factorization runs on one thread. */
+constexpr double MinParallelFlops = 2e7;
+
 /** \internal Splits the tree for \a threads workers: repeatedly replaces the heaviest subtree
   * by its children until a greedy assignment of subtrees to workers is balanced to 10%. */
 template <typename Scalar, typename StorageIndex>
@@ -56,6 +59,10 @@ SubtreeSchedule makeSchedule(const SupernodalFactor<Scalar, StorageIndex>& f, in
       frontier.push_back(s);
       total += work[s];
     }
+  if (total < MinParallelFlops) {  // starting threads would cost more than they save
+    for (Index s = 0; s < ns; ++s) sched.top.push_back(s);
+    return sched;
+  }
   std::vector<char> isTop(ns, 0);
   std::vector<std::vector<Index> > bins;
   for (int iteration = 0; iteration < 4096; ++iteration) {
@@ -98,22 +105,45 @@ struct UpdateStack {
   }
 };
 
-/** \internal Numeric factorization of a SupernodalFactor. */
+/** \internal What a numeric factorization reads: the input's value array, the shift
+  * (scale*A + offset*I), and optionally the removed (Dirichlet) dofs in the permuted numbering,
+  * whose rows and columns are those of the identity. */
+template <typename Scalar>
+struct NumericInput {
+  typedef typename NumTraits<Scalar>::Real RealScalar;
+  const Scalar* values = nullptr;
+  RealScalar offset = 0, scale = 1;
+  const char* removed = nullptr;  ///< removed[j] != 0: permuted column j is a unit column
+};
+
+/** \internal Numeric factorization of a SupernodalFactor, in full or of a set of supernodes. */
 template <typename Scalar, typename StorageIndex>
 class SupernodalNumeric {
  public:
   typedef typename NumTraits<Scalar>::Real RealScalar;
   typedef SupernodalFactor<Scalar, StorageIndex> Factor;
   typedef Supernode<Scalar, StorageIndex> Node;
+  typedef NumericInput<Scalar> Input;
 
-  /** Factors all supernodes with values from \a values (the input's value array), computing
-    * the factor of scale*A + offset*I. \returns -1 on success or the permuted column of the
-    * first bad pivot. */
-  Index factorize(Factor& f, const Scalar* values, RealScalar offset, RealScalar scale, int threads) {
+  /** Keep every supernode's update matrix after a factorization (the cache that lets
+    * refactorize() recompute a supernode from its children without touching clean subtrees).
+    * Takes effect at the next factorize(). */
+  void setCacheUpdates(bool cache) {
+    if (!cache) m_cache.clear();
+    m_cacheUpdates = cache;
+  }
+  /** True when the update matrices of the last factorization are cached. */
+  bool hasCachedUpdates() const { return m_cacheUpdates && m_cacheValid; }
+
+  /** Factors all supernodes. \returns -1 on success or the permuted column of the first bad
+    * pivot. */
+  Index factorize(Factor& f, const Input& in, int threads) {
     if (m_schedule.threads != threads || Index(m_location.size()) != f.count()) {
       m_schedule = makeSchedule(f, threads);
       m_location.assign(f.count(), Location());
     }
+    m_cacheValid = false;
+    if (m_cacheUpdates) m_cache.resize(f.count());
     const Index workers = Index(m_schedule.workerRoots.size());
     m_stacks.resize(workers + 1);
     for (auto& stack : m_stacks) stack.top = 0;
@@ -122,21 +152,45 @@ class SupernodalNumeric {
     if (workers > 0) {
       std::vector<std::thread> pool;
       for (Index w = 1; w < workers; ++w)
-        pool.emplace_back([&, w] { factorSubtrees(f, values, offset, scale, w); });
-      factorSubtrees(f, values, offset, scale, 0);
+        pool.emplace_back([&, w] { factorSubtrees(f, in, w); });
+      factorSubtrees(f, in, 0);
       for (auto& t : pool) t.join();
       setBlasThreads(threads);
     }
     for (Index s : m_schedule.top)
-      if (!factorNode(f, s, values, offset, scale, workers)) break;
+      if (!factorNode(f, s, in, workers)) break;
     if (previousBlas > 0) setBlasThreads(previousBlas);
+    m_cacheValid = m_cacheUpdates && m_failed.load() < 0;
     return m_failed.load();
   }
+
+  /** Recomputes the supernodes in \a dirty (increasing, closed under taking parents) from the
+    * input and their children's update matrices, the clean ones taken from the cache (which
+    * must hold the update matrices of every clean child of a dirty supernode, as after a
+    * factorize() or refactorize() with caching on, even a failed refactorize() of the same
+    * dirty set). Gives the same values as a full factorize() of the same input.
+    * \returns -1 on success or the permuted column of the first bad pivot; on failure the
+    * cache is invalid and the factor incomplete. */
+  Index refactorize(Factor& f, const Input& in, const std::vector<Index>& dirty, int threads) {
+    eigen_assert(m_cacheUpdates && Index(m_cache.size()) == f.count() && "refactorize() needs cached update matrices");
+    m_failed.store(-1);
+    m_cacheValid = false;
+    const int previousBlas = setBlasThreads(threads);
+    for (Index s : dirty)
+      if (!factorNode(f, s, in, 0)) break;
+    if (previousBlas > 0) setBlasThreads(previousBlas);
+    m_cacheValid = m_failed.load() < 0;
+    return m_failed.load();
+  }
+
+  /** The cached update matrix of supernode s (below() × below(), lower triangle). */
+  Scalar* cachedUpdate(Index s) { return m_cache[s].data(); }
 
   /** Bytes of update-matrix workspace currently held. */
   Index workspaceBytes() const {
     Index b = 0;
     for (const auto& s : m_stacks) b += Index(s.buffer.capacity() * sizeof(Scalar));
+    for (const auto& u : m_cache) b += Index(u.capacity() * sizeof(Scalar));
     return b;
   }
 
@@ -145,6 +199,8 @@ class SupernodalNumeric {
     m_schedule = SubtreeSchedule();
     m_location.clear();
     m_stacks.clear();
+    m_cache.clear();
+    m_cacheValid = false;
   }
 
  private:
@@ -152,51 +208,86 @@ class SupernodalNumeric {
     Index stack = -1, offset = 0;
   };
 
-  void factorSubtrees(Factor& f, const Scalar* values, RealScalar offset, RealScalar scale, Index worker) {
+  void factorSubtrees(Factor& f, const Input& in, Index worker) {
     for (Index root : m_schedule.workerRoots[worker])
       for (Index s = f.firstDescendant[root]; s <= root; ++s)
-        if (!factorNode(f, s, values, offset, scale, worker)) return;
+        if (!factorNode(f, s, in, worker)) return;
   }
 
-  /** Assembles, factors and forms the update matrix of supernode s on stack \a stackId. */
-  bool factorNode(Factor& f, Index s, const Scalar* values, RealScalar offset, RealScalar scale, Index stackId) {
+  /** Scatters the supernode's columns of the input into its zeroed block: scaled, shifted, and
+    * with removed dofs' rows and columns replaced by those of the identity. */
+  static void assemble(Node& node, const Input& in) {
+    const Index nr = node.nrows(), nc = node.ncols;
+    Scalar* L = node.values.data();
+    std::fill(L, L + nr * nc, Scalar(0));
+    const Index na = Index(node.assemblySource.size());
+    const Index* target = node.assemblyTarget.data();
+    const Index* source = node.assemblySource.data();
+    bool anyRemoved = false;
+    if (in.removed)
+      for (Index k = 0; k < nr && !anyRemoved; ++k) anyRemoved = in.removed[node.rows[k]] != 0;
+    if (!anyRemoved) {
+      for (Index k = 0; k < na; ++k) {
+        const Index t = target[k];
+        const Scalar v = in.values[source[k]];
+        if (t >= 0)
+          L[t] = in.scale * v;
+        else
+          L[~t] = in.scale * numext::conj(v);
+      }
+      if (in.offset != RealScalar(0))
+        for (Index c = 0; c < nc; ++c) L[c * nr + c] += in.offset;
+      return;
+    }
+    for (Index k = 0; k < na; ++k) {
+      const Index t = target[k] >= 0 ? target[k] : ~target[k];
+      const Index c = t / nr, r = t - c * nr;
+      if (in.removed[node.rows[r]] || in.removed[node.rows[c]]) continue;
+      const Scalar v = in.values[source[k]];
+      L[t] = in.scale * (target[k] >= 0 ? v : numext::conj(v));
+    }
+    for (Index c = 0; c < nc; ++c) L[c * nr + c] = in.removed[node.rows[c]] ? Scalar(1) : L[c * nr + c] + in.offset;
+  }
+
+  /** Assembles, factors and forms the update matrix of supernode s, on stack \a stackId or in
+    * the cache. */
+  bool factorNode(Factor& f, Index s, const Input& in, Index stackId) {
     if (m_failed.load(std::memory_order_relaxed) >= 0) return false;
     Node& node = f.nodes[s];
     const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
-    UpdateStack<Scalar>& stack = m_stacks[stackId];
     if (node.values.rows() != nr || node.values.cols() != nc) node.values.resize(nr, nc);
     Scalar* L = node.values.data();
-    std::fill(L, L + nr * nc, Scalar(0));
-    // 1. the input's columns (scaled, shifted)
-    const Index na = Index(node.assemblySource.size());
-    for (Index k = 0; k < na; ++k) {
-      const Index t = node.assemblyTarget[k];
-      const Scalar v = values[node.assemblySource[k]];
-      if (t >= 0)
-        L[t] = scale * v;
-      else
-        L[~t] = scale * numext::conj(v);
-    }
-    if (offset != RealScalar(0))
-      for (Index c = 0; c < nc; ++c) L[c * nr + c] += offset;
+    // 1. the input's columns
+    assemble(node, in);
     // 2. this supernode's update matrix, then the children's update matrices added in
-    const Index uOffset = stack.push(m * m);
-    std::fill(stack.buffer.data() + uOffset, stack.buffer.data() + uOffset + m * m, Scalar(0));
+    Scalar* U = nullptr;
+    Index uOffset = 0;
+    if (m_cacheUpdates) {
+      m_cache[s].assign(m * m, Scalar(0));
+      U = m_cache[s].data();
+    } else {
+      UpdateStack<Scalar>& stack = m_stacks[stackId];
+      uOffset = stack.push(m * m);
+      U = stack.buffer.data() + uOffset;
+      std::fill(U, U + m * m, Scalar(0));
+    }
     Index lowestChild = -1;
     for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) {
       const Location& loc = m_location[c];
-      extendAdd(f.nodes[c], m_stacks[loc.stack].buffer.data() + loc.offset, L, nr, nc,
-                stack.buffer.data() + uOffset, m);
-      if (loc.stack == stackId && (lowestChild < 0 || loc.offset < lowestChild)) lowestChild = loc.offset;
+      const Scalar* childU = m_cacheUpdates ? m_cache[c].data() : m_stacks[loc.stack].buffer.data() + loc.offset;
+      extendAdd(f.nodes[c], childU, L, nr, nc, U, m);
+      if (!m_cacheUpdates && loc.stack == stackId && (lowestChild < 0 || loc.offset < lowestChild))
+        lowestChild = loc.offset;
     }
-    Index myOffset = uOffset;
     if (lowestChild >= 0) {  // pop the children: they sit right below on this stack
-      std::memmove(stack.buffer.data() + lowestChild, stack.buffer.data() + uOffset, sizeof(Scalar) * m * m);
-      myOffset = lowestChild;
+      UpdateStack<Scalar>& stack = m_stacks[stackId];
+      std::memmove(stack.buffer.data() + lowestChild, U, sizeof(Scalar) * m * m);
+      uOffset = lowestChild;
       stack.top = lowestChild + m * m;
+      U = stack.buffer.data() + uOffset;
     }
     m_location[s].stack = stackId;
-    m_location[s].offset = myOffset;
+    m_location[s].offset = uOffset;
     // 3. dense factorization of the front
     const Index bad = potrf(nc, L, nr);
     if (bad >= 0) {
@@ -208,7 +299,7 @@ class SupernodalNumeric {
     }
     if (m > 0) {
       trsmRightLowerAdjoint(m, nc, L, nr, L + nc, nr);
-      herkLowerMinus(m, nc, L + nc, nr, stack.buffer.data() + myOffset, m);
+      herkLowerMinus(m, nc, L + nc, nr, U, m);
     }
     return true;
   }
@@ -234,6 +325,8 @@ class SupernodalNumeric {
   SubtreeSchedule m_schedule;
   std::vector<Location> m_location;
   std::vector<UpdateStack<Scalar> > m_stacks;
+  std::vector<std::vector<Scalar> > m_cache;  ///< per supernode update matrix, when caching
+  bool m_cacheUpdates = false, m_cacheValid = false;
   std::atomic<Index> m_failed{-1};
 };
 

@@ -7,6 +7,8 @@
 #ifndef EIGEN_UPDATABLE_SUPERNODAL_LLT_H
 #define EIGEN_UPDATABLE_SUPERNODAL_LLT_H
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -170,6 +172,58 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   /** \returns the relaxed-amalgamation thresholds. */
   const SupernodeRelaxation& relaxation() const { return m_relaxation; }
 
+  /** \name In-place updates (paper §3.3 and §4.1)
+    * Every update leaves the object holding the factor of the current matrix: the matrix last
+    * given to compute()/factorize()/updateColumns(), with the rows and columns of the removed
+    * dofs replaced by those of the identity. The first update after a factorization without
+    * update caching (setUpdateCaching()) refactors once to build the cache.
+    * On bad input (indices out of range or repeated, a pattern mismatch, removing a removed dof,
+    * restoring a dof that is not removed) info() is InvalidInput and nothing changes; when the
+    * updated matrix is not positive definite info() is NumericalIssue and the object keeps the
+    * factor it had before the call. */
+  //@{
+
+  /** The values of A changed in the columns \a columns (and, by symmetry, in the same rows);
+    * \a matrix has the analysed pattern and is the new matrix. \a columns is any container of
+    * indices with size() and operator[] (std::vector<int>, VectorXi, ...). */
+  template <typename Indices>
+  UpdatableSupernodalLLT& updateColumns(const MatrixType& matrix, const Indices& columns);
+
+  /** Replaces the rows and columns of the dofs \a dofs by those of the identity (Dirichlet
+    * constraints; the paper's A^B, eq. 14), updating the factor in place. */
+  template <typename Indices>
+  UpdatableSupernodalLLT& removeDofs(const Indices& dofs);
+
+  /** Gives the removed dofs \a dofs their original rows and columns back. */
+  template <typename Indices>
+  UpdatableSupernodalLLT& restoreDofs(const Indices& dofs);
+
+  /** \returns the removed dofs, in the order they were removed. */
+  const std::vector<StorageIndex>& removedDofs() const { return m_removedList; }
+
+  /** \returns true when dof \a i is removed. */
+  bool isRemoved(Index i) const { return !m_removedOriginal.empty() && m_removedOriginal[i] != 0; }
+
+  /** Dirichlet solve: with B the removed dofs and I the others, returns x with
+    * \f$ A_{II} x_I = b_I - A_{IB} g_B \f$ and \f$ x_B = g_B \f$, for every column of \a b.
+    * \a b and \a g are n×k; only the rows of B are read from \a g. (solve() with the same b
+    * instead treats b_B as the known values.) */
+  template <typename Rhs, typename Known>
+  Matrix<Scalar, Dynamic, Dynamic> solveDirichlet(const MatrixBase<Rhs>& b, const MatrixBase<Known>& g) const;
+
+  /** Forces the algorithm of the next updates (UpdateRoute::Automatic picks by cost). */
+  void setUpdateRoute(UpdateRoute route) { m_route = route; }
+  /** \returns the forced update route, or UpdateRoute::Automatic. */
+  UpdateRoute updateRoute() const { return m_route; }
+
+  /** Keep every supernode's update matrix after factorize() (about the memory of L again), so
+    * that the first update needs no refactorization. Updates turn it on by themselves. */
+  void setUpdateCaching(bool cache) { m_numeric.setCacheUpdates(cache); }
+
+  /** \returns what the last update did: route, dirty supernodes and columns, flops, time. */
+  const UpdateStatistics& lastUpdate() const { return m_lastUpdate; }
+  //@}
+
   /** \returns the bytes held by the factor (values and row indices) and its workspace. */
   Index memoryBytes() const {
     Index b = m_numeric.workspaceBytes();
@@ -239,6 +293,25 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   int m_threads;
   mutable CholMatrixType m_sparseL;
   mutable bool m_sparseLIsValid;
+  // state of in-place updates
+  std::vector<Scalar> m_values;                                  ///< values of the current matrix
+  internal::updatable_cholesky::CompressedPattern<StorageIndex> m_upper;  ///< C's strict upper part
+  std::vector<char> m_removedPermuted, m_removedOriginal;       ///< removed flags, both numberings
+  std::vector<StorageIndex> m_removedList;
+  UpdateRoute m_route = UpdateRoute::Automatic;
+  UpdateStatistics m_lastUpdate;
+
+  internal::updatable_cholesky::NumericInput<Scalar> numericInput() const {
+    internal::updatable_cholesky::NumericInput<Scalar> input;
+    input.values = m_values.data();
+    input.offset = m_shiftOffset;
+    input.scale = m_shiftScale;
+    input.removed = m_removedList.empty() ? nullptr : m_removedPermuted.data();
+    return input;
+  }
+  bool beginUpdate();
+  template <typename Revert>
+  void applyUpdate(const std::vector<StorageIndex>& permutedColumns, Revert&& revert);
 };
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
@@ -291,7 +364,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   for (Index i = 0; i < n; ++i) perm[i] = postInverse[perm[i]];
   std::vector<StorageIndex> postParent(n);
   for (Index k = 0; k < n; ++k) postParent[k] = parent[post[k]] == -1 ? StorageIndex(-1) : postInverse[parent[post[k]]];
-  permuteTriangle<UpLo_>(*pa, perm, lower, static_cast<CompressedPattern<StorageIndex>*>(0));
+  permuteTriangle<UpLo_>(*pa, perm, lower, &m_upper);
   // 3. column counts, relaxed supernodes, row structures, factor storage and assembly maps
   std::vector<StorageIndex> colCount;
   columnCounts(lower.pattern, postParent, colCount);
@@ -307,6 +380,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   m_P.resize(n);
   for (Index i = 0; i < n; ++i) m_P.indices()[i] = perm[i];
   m_Pinv = m_P.inverse();
+  m_removedPermuted.assign(n, 0);
+  m_removedOriginal.assign(n, 0);
+  m_removedList.clear();
+  m_values.clear();
   m_info = Success;
   m_analysisIsOk = true;
 }
@@ -333,7 +410,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::factorize(const Matr
     m_info = InvalidInput;
     return;
   }
-  const Index bad = m_numeric.factorize(m_factor, pa->valuePtr(), m_shiftOffset, m_shiftScale, threadCount());
+  m_values.assign(pa->valuePtr(), pa->valuePtr() + pa->nonZeros());
+  const Index bad = m_numeric.factorize(m_factor, numericInput(), threadCount());
   if (bad >= 0) {
     m_info = NumericalIssue;
     m_failedColumn = m_Pinv.indices()[bad];
@@ -365,6 +443,171 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildSparseL() const
   }
   outer[m_n] = StorageIndex(nnz);
   m_sparseLIsValid = true;
+}
+
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::beginUpdate() {
+  eigen_assert(m_factorizationIsOk && "UpdatableSupernodalLLT: updates need a successful factorization first.");
+  m_lastUpdate = UpdateStatistics();
+  m_failedColumn = -1;
+  if (!m_factorizationIsOk) {
+    m_info = InvalidInput;
+    return false;
+  }
+  return true;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Revert>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
+    const std::vector<StorageIndex>& permutedColumns, Revert&& revert) {
+  using namespace internal::updatable_cholesky;
+  const auto start = std::chrono::steady_clock::now();
+  m_sparseLIsValid = false;
+  const std::vector<Index> dirty = dirtySupernodes(m_factor, m_upper, permutedColumns);
+  const double totalFlops = m_factor.flops(), dirtyFlops = supernodeFlops(m_factor, dirty);
+  UpdateRoute route = m_route;
+  if (!m_numeric.hasCachedUpdates()) route = UpdateRoute::Refactorization;
+  if (route == UpdateRoute::Automatic)  // the full factorization runs on all threads
+    route = dirtyFlops * threadCount() > 0.9 * totalFlops ? UpdateRoute::Refactorization
+                                                          : UpdateRoute::PartialRefactorization;
+  auto run = [&]() {
+    m_numeric.setCacheUpdates(true);
+    return route == UpdateRoute::Refactorization ? m_numeric.factorize(m_factor, numericInput(), threadCount())
+                                                 : m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
+  };
+  const Index bad = run();
+  if (bad >= 0) {  // not positive definite: put the previous matrix back and its factor with it
+    m_failedColumn = m_Pinv.indices()[bad];
+    revert();
+    const Index again = run();
+    eigen_assert(again < 0 && "UpdatableSupernodalLLT: the previous factor could not be restored");
+    m_factorizationIsOk = again < 0;
+    m_info = NumericalIssue;
+  } else {
+    m_info = Success;
+  }
+  UpdateStatistics& st = m_lastUpdate;
+  st.route = route;
+  st.changedColumns = Index(permutedColumns.size());
+  st.dirtySupernodes = route == UpdateRoute::Refactorization ? m_factor.count() : Index(dirty.size());
+  st.dirtyColumns = 0;
+  if (route == UpdateRoute::Refactorization)
+    st.dirtyColumns = m_n;
+  else
+    for (Index s : dirty) st.dirtyColumns += m_factor.nodes[s].ncols;
+  st.flops = route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops;
+  st.flopFraction = totalFlops > 0 ? st.flops / totalFlops : 0;
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Indices>
+UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::updateColumns(
+    const MatrixType& a, const Indices& columns) {
+  if (!beginUpdate()) return *this;
+  MatrixType copy;
+  const MatrixType* pa = &a;
+  if (!a.isCompressed()) {
+    copy = a;
+    copy.makeCompressed();
+    pa = &copy;
+  }
+  std::vector<StorageIndex> cols;
+  const char* why = nullptr;
+  if (!m_pattern.matches(*pa) || !internal::updatable_cholesky::checkIndices(columns, m_n, cols, why)) {
+    m_info = InvalidInput;
+    return *this;
+  }
+  for (auto& c : cols) c = m_P.indices()[c];
+  std::vector<Scalar> previous(pa->valuePtr(), pa->valuePtr() + pa->nonZeros());
+  previous.swap(m_values);
+  applyUpdate(cols, [&]() { m_values.swap(previous); });
+  return *this;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Indices>
+UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::removeDofs(
+    const Indices& dofs) {
+  if (!beginUpdate()) return *this;
+  std::vector<StorageIndex> list;
+  const char* why = nullptr;
+  bool ok = internal::updatable_cholesky::checkIndices(dofs, m_n, list, why);
+  for (Index k = 0; ok && k < Index(list.size()); ++k) ok = !m_removedOriginal[list[k]];
+  if (!ok) {
+    m_info = InvalidInput;
+    return *this;
+  }
+  std::vector<StorageIndex> cols(list.size());
+  auto setFlags = [&](char flag) {
+    for (Index k = 0; k < Index(list.size()); ++k) {
+      m_removedOriginal[list[k]] = flag;
+      m_removedPermuted[m_P.indices()[list[k]]] = flag;
+    }
+  };
+  for (Index k = 0; k < Index(list.size()); ++k) cols[k] = m_P.indices()[list[k]];
+  const Index previousCount = Index(m_removedList.size());
+  setFlags(1);
+  m_removedList.insert(m_removedList.end(), list.begin(), list.end());
+  applyUpdate(cols, [&]() {
+    setFlags(0);
+    m_removedList.resize(previousCount);
+  });
+  return *this;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Indices>
+UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreDofs(
+    const Indices& dofs) {
+  if (!beginUpdate()) return *this;
+  std::vector<StorageIndex> list;
+  const char* why = nullptr;
+  bool ok = internal::updatable_cholesky::checkIndices(dofs, m_n, list, why);
+  for (Index k = 0; ok && k < Index(list.size()); ++k) ok = m_removedOriginal[list[k]] != 0;
+  if (!ok) {
+    m_info = InvalidInput;
+    return *this;
+  }
+  std::vector<StorageIndex> cols(list.size());
+  auto setFlags = [&](char flag) {
+    for (Index k = 0; k < Index(list.size()); ++k) {
+      m_removedOriginal[list[k]] = flag;
+      m_removedPermuted[m_P.indices()[list[k]]] = flag;
+    }
+  };
+  for (Index k = 0; k < Index(list.size()); ++k) cols[k] = m_P.indices()[list[k]];
+  const std::vector<StorageIndex> previousList = m_removedList;
+  setFlags(0);
+  m_removedList.erase(std::remove_if(m_removedList.begin(), m_removedList.end(),
+                                     [&](StorageIndex i) { return !m_removedOriginal[i]; }),
+                      m_removedList.end());
+  applyUpdate(cols, [&]() {
+    setFlags(1);
+    m_removedList = previousList;
+  });
+  return *this;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Rhs, typename Known>
+Matrix<typename MatrixType_::Scalar, Dynamic, Dynamic> UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::solveDirichlet(
+    const MatrixBase<Rhs>& b, const MatrixBase<Known>& g) const {
+  eigen_assert(m_factorizationIsOk && "UpdatableSupernodalLLT::solveDirichlet(): no valid factorization.");
+  eigen_assert(b.rows() == m_n && g.rows() == m_n && b.cols() == g.cols() &&
+               "UpdatableSupernodalLLT::solveDirichlet(): b and g must both be n x k");
+  Matrix<Scalar, Dynamic, Dynamic> rhs = b, known = g;
+  if (!m_removedList.empty()) {
+    internal::updatable_cholesky::subtractDirichletCoupling<UpLo_, bool(MatrixType::IsRowMajor)>(
+        m_pattern, m_values.data(), m_removedOriginal.data(), known.data(), known.rows(), rhs.data(), rhs.rows(),
+        rhs.cols());
+    for (StorageIndex i : m_removedList) rhs.row(i) = known.row(i);
+  }
+  Matrix<Scalar, Dynamic, Dynamic> x = m_P * rhs;
+  solveInPlacePermuted(x);
+  return m_Pinv * x;
 }
 
 }  // namespace Eigen
