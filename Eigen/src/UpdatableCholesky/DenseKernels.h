@@ -107,20 +107,20 @@ EIGEN_UC_TRSM(std::complex<float>, ctrsm_)
 EIGEN_UC_TRSM(std::complex<double>, ztrsm_)
 #undef EIGEN_UC_TRSM
 
-inline void blasHerk(int n, int k, const float* a, int lda, float* c, int ldc) {
-  const float alpha = -1, beta = 1;
+inline void blasHerk(int n, int k, float alpha, const float* a, int lda, float* c, int ldc) {
+  const float beta = 1;
   ssyrk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
 }
-inline void blasHerk(int n, int k, const double* a, int lda, double* c, int ldc) {
-  const double alpha = -1, beta = 1;
+inline void blasHerk(int n, int k, double alpha, const double* a, int lda, double* c, int ldc) {
+  const double beta = 1;
   dsyrk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
 }
-inline void blasHerk(int n, int k, const std::complex<float>* a, int lda, std::complex<float>* c, int ldc) {
-  const float alpha = -1, beta = 1;
+inline void blasHerk(int n, int k, float alpha, const std::complex<float>* a, int lda, std::complex<float>* c, int ldc) {
+  const float beta = 1;
   cherk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
 }
-inline void blasHerk(int n, int k, const std::complex<double>* a, int lda, std::complex<double>* c, int ldc) {
-  const double alpha = -1, beta = 1;
+inline void blasHerk(int n, int k, double alpha, const std::complex<double>* a, int lda, std::complex<double>* c, int ldc) {
+  const double beta = 1;
   zherk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
 }
 
@@ -238,30 +238,31 @@ void trsmRightLowerAdjoint(Index m, Index n, const Scalar* l, Index ldl, Scalar*
   L.template triangularView<Lower>().adjoint().template solveInPlace<OnTheRight>(B);
 }
 
-/** \internal Lower triangle of C (n×n) -= A · A^H for the n×k block A. */
+/** \internal Lower triangle of C (n×n) += alpha · A · A^H for the n×k block A. */
 template <typename Scalar>
-void herkLowerMinus(Index n, Index k, const Scalar* a, Index lda, Scalar* c, Index ldc) {
+void herkLower(Index n, Index k, typename NumTraits<Scalar>::Real alpha, const Scalar* a, Index lda, Scalar* c,
+               Index ldc) {
   if (n == 0 || k == 0) return;
   if (n * n * k <= 2 * SmallKernelWork) {
     for (Index j = 0; j < n; ++j) {
       Scalar* cj = c + j * ldc;
       for (Index p = 0; p < k; ++p) {
         const Scalar* ap = a + p * lda;
-        const Scalar f = numext::conj(ap[j]);
-        for (Index i = j; i < n; ++i) cj[i] -= ap[i] * f;
+        const Scalar f = alpha * numext::conj(ap[j]);
+        for (Index i = j; i < n; ++i) cj[i] += ap[i] * f;
       }
     }
     return;
   }
 #ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
   if constexpr (BlasTraits<Scalar>::Supported) {
-    blasHerk(int(n), int(k), a, int(lda), c, int(ldc));
+    blasHerk(int(n), int(k), alpha, a, int(lda), c, int(ldc));
     return;
   }
 #endif
   Map<const Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > A(a, n, k, OuterStride<>(lda));
   Map<Matrix<Scalar, Dynamic, Dynamic>, 0, OuterStride<> > C(c, n, n, OuterStride<>(ldc));
-  C.template selfadjointView<Lower>().rankUpdate(A, typename NumTraits<Scalar>::Real(-1));
+  C.template selfadjointView<Lower>().rankUpdate(A, alpha);
 }
 
 /** \internal Solves L X = B (adjoint=false) or L^H X = B (adjoint=true) in place, for the n×n

@@ -20,7 +20,8 @@ namespace Eigen {
   * \brief The algorithm an update uses (see UpdatableSupernodalLLT::setUpdateRoute()). */
 enum class UpdateRoute {
   Automatic,               ///< the cheapest route by the cost model (default)
-  PartialRefactorization,  ///< recompute the dirty supernodes only (Algorithm 3)
+  PartialRefactorization,  ///< recompute the dirty supernodes only (Algorithm 3); exact
+  LowRank,                 ///< removeDofs only: fold L(I,B) into L(I,I) along the paths of B
   Refactorization          ///< recompute every supernode
 };
 

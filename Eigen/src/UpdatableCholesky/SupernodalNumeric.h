@@ -183,8 +183,9 @@ class SupernodalNumeric {
     return m_failed.load();
   }
 
-  /** The cached update matrix of supernode s (below() × below(), lower triangle). */
-  Scalar* cachedUpdate(Index s) { return m_cache[s].data(); }
+  /** The cached update matrices (supernode s: below() × below(), lower triangle), for updates
+    * that change them in place. */
+  std::vector<std::vector<Scalar> >& cache() { return m_cache; }
 
   /** Bytes of update-matrix workspace currently held. */
   Index workspaceBytes() const {
@@ -299,7 +300,7 @@ class SupernodalNumeric {
     }
     if (m > 0) {
       trsmRightLowerAdjoint(m, nc, L, nr, L + nc, nr);
-      herkLowerMinus(m, nc, L + nc, nr, U, m);
+      herkLower(m, nc, RealScalar(-1), L + nc, nr, U, m);
     }
     return true;
   }

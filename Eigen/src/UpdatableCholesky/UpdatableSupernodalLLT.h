@@ -311,7 +311,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   }
   bool beginUpdate();
   template <typename Revert>
-  void applyUpdate(const std::vector<StorageIndex>& permutedColumns, Revert&& revert);
+  void applyUpdate(const std::vector<StorageIndex>& permutedColumns, bool isRemoval, Revert&& revert);
 };
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
@@ -461,17 +461,36 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::beginUpdate() {
 template <typename MatrixType_, int UpLo_, typename Ordering_>
 template <typename Revert>
 void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
-    const std::vector<StorageIndex>& permutedColumns, Revert&& revert) {
+    const std::vector<StorageIndex>& permutedColumns, bool isRemoval, Revert&& revert) {
   using namespace internal::updatable_cholesky;
   const auto start = std::chrono::steady_clock::now();
   m_sparseLIsValid = false;
   const std::vector<Index> dirty = dirtySupernodes(m_factor, m_upper, permutedColumns);
   const double totalFlops = m_factor.flops(), dirtyFlops = supernodeFlops(m_factor, dirty);
   UpdateRoute route = m_route;
+  if (route == UpdateRoute::LowRank && !isRemoval) route = UpdateRoute::Automatic;
   if (!m_numeric.hasCachedUpdates()) route = UpdateRoute::Refactorization;
-  if (route == UpdateRoute::Automatic)  // the full factorization runs on all threads
+  double lowRankFlops = 0;
+  if (isRemoval && (route == UpdateRoute::Automatic || route == UpdateRoute::LowRank))
+    lowRankFlops = lowRankRemovalFlops(m_factor, dirty, permutedColumns);
+  if (route == UpdateRoute::Automatic) {  // the full factorization runs on all threads
     route = dirtyFlops * threadCount() > 0.9 * totalFlops ? UpdateRoute::Refactorization
                                                           : UpdateRoute::PartialRefactorization;
+    if (isRemoval && lowRankFlops < (std::min)(dirtyFlops, totalFlops / threadCount())) route = UpdateRoute::LowRank;
+  }
+  if (route == UpdateRoute::LowRank) {  // cannot fail: removal keeps A positive definite
+    const double flops = lowRankRemoval(m_factor, m_numeric.cache(), dirty, m_removedPermuted.data());
+    m_info = Success;
+    UpdateStatistics& st = m_lastUpdate;
+    st.route = route;
+    st.changedColumns = Index(permutedColumns.size());
+    st.dirtySupernodes = Index(dirty.size());
+    for (Index s : dirty) st.dirtyColumns += m_factor.nodes[s].ncols;
+    st.flops = flops;
+    st.flopFraction = totalFlops > 0 ? flops / totalFlops : 0;
+    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
   auto run = [&]() {
     m_numeric.setCacheUpdates(true);
     return route == UpdateRoute::Refactorization ? m_numeric.factorize(m_factor, numericInput(), threadCount())
@@ -523,7 +542,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   for (auto& c : cols) c = m_P.indices()[c];
   std::vector<Scalar> previous(pa->valuePtr(), pa->valuePtr() + pa->nonZeros());
   previous.swap(m_values);
-  applyUpdate(cols, [&]() { m_values.swap(previous); });
+  applyUpdate(cols, false, [&]() { m_values.swap(previous); });
   return *this;
 }
 
@@ -551,7 +570,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   const Index previousCount = Index(m_removedList.size());
   setFlags(1);
   m_removedList.insert(m_removedList.end(), list.begin(), list.end());
-  applyUpdate(cols, [&]() {
+  applyUpdate(cols, true, [&]() {
     setFlags(0);
     m_removedList.resize(previousCount);
   });
@@ -584,7 +603,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   m_removedList.erase(std::remove_if(m_removedList.begin(), m_removedList.end(),
                                      [&](StorageIndex i) { return !m_removedOriginal[i]; }),
                       m_removedList.end());
-  applyUpdate(cols, [&]() {
+  applyUpdate(cols, false, [&]() {
     setFlags(1);
     m_removedList = previousList;
   });
