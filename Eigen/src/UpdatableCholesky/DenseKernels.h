@@ -60,6 +60,23 @@ void strsv_(const char*, const char*, const char*, const int*, const float*, con
 void dtrsv_(const char*, const char*, const char*, const int*, const double*, const int*, double*, const int*);
 void ctrsv_(const char*, const char*, const char*, const int*, const void*, const int*, void*, const int*);
 void ztrsv_(const char*, const char*, const char*, const int*, const void*, const int*, void*, const int*);
+// triangular-pentagonal LQ and the application of its Q (LAPACK >= 3.7)
+void stplqt_(const int*, const int*, const int*, const int*, float*, const int*, float*, const int*, float*,
+             const int*, float*, int*);
+void dtplqt_(const int*, const int*, const int*, const int*, double*, const int*, double*, const int*, double*,
+             const int*, double*, int*);
+void ctplqt_(const int*, const int*, const int*, const int*, void*, const int*, void*, const int*, void*,
+             const int*, void*, int*);
+void ztplqt_(const int*, const int*, const int*, const int*, void*, const int*, void*, const int*, void*,
+             const int*, void*, int*);
+void stpmlqt_(const char*, const char*, const int*, const int*, const int*, const int*, const int*, const float*,
+              const int*, const float*, const int*, float*, const int*, float*, const int*, float*, int*);
+void dtpmlqt_(const char*, const char*, const int*, const int*, const int*, const int*, const int*, const double*,
+              const int*, const double*, const int*, double*, const int*, double*, const int*, double*, int*);
+void ctpmlqt_(const char*, const char*, const int*, const int*, const int*, const int*, const int*, const void*,
+              const int*, const void*, const int*, void*, const int*, void*, const int*, void*, int*);
+void ztpmlqt_(const char*, const char*, const int*, const int*, const int*, const int*, const int*, const void*,
+              const int*, const void*, const int*, void*, const int*, void*, const int*, void*, int*);
 // OpenBLAS thread control; weak so that any other BLAS links too (then these are null).
 void openblas_set_num_threads(int) __attribute__((weak));
 int openblas_get_num_threads(void) __attribute__((weak));
@@ -143,6 +160,26 @@ EIGEN_UC_GEMV(double, dgemv_, dtrsv_)
 EIGEN_UC_GEMV(std::complex<float>, cgemv_, ctrsv_)
 EIGEN_UC_GEMV(std::complex<double>, zgemv_, ztrsv_)
 #undef EIGEN_UC_GEMV
+
+#define EIGEN_UC_TPLQT(T, LQT, MLQT, TRANS)                                                           \
+  inline int blasTplqt(int m, int n, int mb, T* a, int lda, T* b, int ldb, T* t, int ldt, T* work) {    \
+    const int l = 0;                                                                                 \
+    int info = 0;                                                                                    \
+    LQT(&m, &n, &l, &mb, a, &lda, b, &ldb, t, &ldt, work, &info);                                    \
+    return info;                                                                                     \
+  }                                                                                                  \
+  inline int blasTpmlqtRightAdjoint(int m, int n, int k, int mb, const T* v, int ldv, const T* t, int ldt, \
+                                    T* a, int lda, T* b, int ldb, T* work) {                         \
+    const int l = 0;                                                                                 \
+    int info = 0;                                                                                    \
+    MLQT("R", TRANS, &m, &n, &k, &l, &mb, v, &ldv, t, &ldt, a, &lda, b, &ldb, work, &info);          \
+    return info;                                                                                     \
+  }
+EIGEN_UC_TPLQT(float, stplqt_, stpmlqt_, "T")
+EIGEN_UC_TPLQT(double, dtplqt_, dtpmlqt_, "T")
+EIGEN_UC_TPLQT(std::complex<float>, ctplqt_, ctpmlqt_, "C")
+EIGEN_UC_TPLQT(std::complex<double>, ztplqt_, ztpmlqt_, "C")
+#undef EIGEN_UC_TPLQT
 
 EIGEN_UC_GEMM(float, sgemm_)
 EIGEN_UC_GEMM(double, dgemm_)

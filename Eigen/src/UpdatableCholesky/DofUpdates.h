@@ -40,25 +40,43 @@ struct UpdateStatistics {
 namespace internal {
 namespace updatable_cholesky {
 
-/** \internal Checks a list of dof indices: every index in [0,n), none repeated. On success fills
-  * \a out; otherwise returns false and leaves a reason in \a why. */
+/** \internal Per-supernode scratch space of the updates, allocated once per analysis and left
+  * clean (all zero / empty) after every use, so that an update costs nothing proportional to the
+  * size of the matrix. */
+template <typename Scalar>
+struct UpdateWorkspace {
+  std::vector<char> mark;                                   ///< dirty marks
+  std::vector<Index> rank, local;                           ///< per-supernode ranks (cost model)
+  std::vector<Matrix<Scalar, Dynamic, Dynamic> > carried;   ///< W passed to the parent
+  void resize(Index supernodes) {
+    mark.assign(supernodes, 0);
+    rank.assign(supernodes, 0);
+    local.assign(supernodes, 0);
+    carried.clear();
+    carried.resize(supernodes);
+  }
+};
+
+/** \internal Checks a list of dof indices: every index in [0,n), none repeated (found by
+  * sorting a copy, so the cost is that of the list, not of n). On success fills \a out;
+  * otherwise returns false and leaves a reason in \a why. */
 template <typename Indices, typename StorageIndex>
 bool checkIndices(const Indices& indices, Index n, std::vector<StorageIndex>& out, const char*& why) {
   const Index count = Index(indices.size());
   out.resize(count);
-  std::vector<char> seen(n, 0);
   for (Index k = 0; k < count; ++k) {
     const Index i = Index(indices[k]);
     if (i < 0 || i >= n) {
       why = "index out of range";
       return false;
     }
-    if (seen[i]) {
-      why = "index repeated";
-      return false;
-    }
-    seen[i] = 1;
     out[k] = StorageIndex(i);
+  }
+  std::vector<StorageIndex> sorted(out);
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+    why = "index repeated";
+    return false;
   }
   return true;
 }
@@ -69,8 +87,8 @@ bool checkIndices(const Indices& indices, Index n, std::vector<StorageIndex>& ou
 template <typename Scalar, typename StorageIndex>
 std::vector<Index> dirtySupernodes(const SupernodalFactor<Scalar, StorageIndex>& f,
                                    const CompressedPattern<StorageIndex>& upper,
-                                   const std::vector<StorageIndex>& columns) {
-  std::vector<char> mark(f.count(), 0);
+                                   const std::vector<StorageIndex>& columns, UpdateWorkspace<Scalar>& ws) {
+  std::vector<char>& mark = ws.mark;
   std::vector<Index> dirty;
   auto markPath = [&](Index s) {
     for (; s != -1 && !mark[s]; s = f.parent[s]) {
@@ -83,6 +101,7 @@ std::vector<Index> dirtySupernodes(const SupernodalFactor<Scalar, StorageIndex>&
     for (Index p = upper.ptr[k]; p < upper.ptr[k + 1]; ++p) markPath(f.colToSuper[upper.idx[p]]);
   }
   std::sort(dirty.begin(), dirty.end());
+  for (Index s : dirty) mark[s] = 0;
   return dirty;
 }
 

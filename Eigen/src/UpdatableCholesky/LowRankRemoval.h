@@ -29,8 +29,9 @@ namespace updatable_cholesky {
   * dirty supernodes \a dirty (increasing), from the symbolic structure only. */
 template <typename Scalar, typename StorageIndex>
 double lowRankRemovalFlops(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& dirty,
-                           const std::vector<StorageIndex>& removedNow) {
-  std::vector<Index> rankOut(f.count(), 0), local(f.count(), 0);
+                           const std::vector<StorageIndex>& removedNow, UpdateWorkspace<Scalar>& ws) {
+  std::vector<Index>& rankOut = ws.rank;
+  std::vector<Index>& local = ws.local;
   for (StorageIndex b : removedNow) ++local[f.colToSuper[b]];
   double flops = 0;
   for (Index s : dirty) {
@@ -43,7 +44,82 @@ double lowRankRemovalFlops(const SupernodalFactor<Scalar, StorageIndex>& f, cons
     rankOut[s] = (std::min)(rank, node.below());
     flops += m * m * double(rankOut[s]);  // update-matrix correction
   }
+  for (Index s : dirty) rankOut[s] = local[s] = 0;
   return flops;
+}
+
+/** \internal l := (l + conj(s) w) / c and w := c w - s l (new l), elementwise: one Givens
+  * rotation of a column pair. Separate pointers so that the compiler vectorizes it. */
+template <typename Scalar, typename RealScalar>
+EIGEN_DONT_INLINE void rotateColumns(Index n, Scalar* EIGEN_RESTRICT l, Scalar* EIGEN_RESTRICT w, RealScalar cosine,
+                                     RealScalar invCos, Scalar sine, Scalar conjSine) {
+  for (Index i = 0; i < n; ++i) {
+    const Scalar li = (l[i] + conjSine * w[i]) * invCos;
+    l[i] = li;
+    w[i] = cosine * w[i] - sine * li;
+  }
+}
+
+/** \internal Rank-r fold by Givens rotations, column by column: [L(:,j) W(:,t)] G(j,t). */
+template <typename Scalar, typename StorageIndex, typename Dense>
+double foldByRotations(Supernode<Scalar, StorageIndex>& node, Dense& W, const char* removed) {
+  typedef typename NumTraits<Scalar>::Real RealScalar;
+  const Index nr = node.nrows(), nc = node.ncols, rank = W.cols();
+  Scalar* L = node.values.data();
+  double flops = 0;
+  for (Index j = 0; j < nc; ++j) {
+    if (removed[node.rows[j]]) continue;
+    Scalar* lj = L + j * nr;
+    for (Index t = 0; t < rank; ++t) {
+      Scalar* w = W.data() + t * nr;
+      const Scalar wj = w[j];
+      if (wj == Scalar(0)) continue;
+      const RealScalar ljj = numext::real(lj[j]);
+      const RealScalar r = numext::hypot(ljj, numext::abs(wj));
+      const RealScalar cosine = r / ljj, invCos = ljj / r;
+      const Scalar sine = wj / ljj, conjSine = numext::conj(sine);
+      lj[j] = Scalar(r);
+      w[j] = Scalar(0);
+      rotateColumns(nr - j - 1, lj + j + 1, w + j + 1, cosine, invCos, sine, conjSine);
+      flops += 4.0 * double(nr - j);
+    }
+  }
+  return flops;
+}
+
+/** \internal Below this rank the fold uses rotations; above it LAPACK's blocked
+  * triangular-pentagonal LQ (?tplqt/?tpmlqt), where the per-call cost pays off. */
+enum { BlockedFoldMinRank = 8 };
+
+/** \internal Folds the columns of W (rows = the supernode's rows; zero on removed rows) into the
+  * supernode's kept columns, leaving in W's rows below the part to pass on. Unit columns of
+  * removed dofs stay unit columns (their rows are zero in W). \returns the flops spent. */
+template <typename Scalar, typename StorageIndex, typename Dense>
+double foldIntoColumns(Supernode<Scalar, StorageIndex>& node, Dense& W, const char* removed) {
+  const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, rank = W.cols();
+  if (rank == 0) return 0;
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+  if constexpr (BlasTraits<Scalar>::Supported) {
+    if (rank >= BlockedFoldMinRank && nc >= BlockedFoldMinRank) {
+      typedef typename NumTraits<Scalar>::Real RealScalar;
+      Scalar* L = node.values.data();
+      const int mb = int((std::min<Index>)(32, nc));
+      std::vector<Scalar> t(Index(mb) * nc), work(Index(mb) * (std::max)(nc, m));
+      // LQ of [L11 W_top] = [L11' 0] Q, then [L21 W_below] Q^H = [L21' W_out]
+      int info = blasTplqt(int(nc), int(rank), mb, L, int(nr), W.data(), int(nr), t.data(), mb, work.data());
+      if (info == 0 && m > 0)
+        info = blasTpmlqtRightAdjoint(int(m), int(rank), int(nc), mb, W.data(), int(nr), t.data(), mb, L + nc,
+                                      int(nr), W.data() + nc, int(nr), work.data());
+      eigen_assert(info == 0 && "LAPACK tplqt/tpmlqt failed");
+      W.topRows(nc).setZero();
+      for (Index j = 0; j < nc; ++j)  // Householder LQ may leave negative pivots: flip the column
+        if (numext::real(L[j + j * nr]) < RealScalar(0))
+          for (Index i = j; i < nr; ++i) L[i + j * nr] = -L[i + j * nr];
+      return 2.0 * double(nc) * double(nc) * double(rank) + 4.0 * double(m) * double(nc) * double(rank);
+    }
+  }
+#endif
+  return foldByRotations(node, W, removed);
 }
 
 /** \internal Removes the permuted columns \a removedNow (whose flags are already set in
@@ -52,10 +128,10 @@ double lowRankRemovalFlops(const SupernodalFactor<Scalar, StorageIndex>& f, cons
   * matrices \a cache consistent. \returns the flops spent. */
 template <typename Scalar, typename StorageIndex>
 double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::vector<Scalar> >& cache,
-                      const std::vector<Index>& dirty, const char* removed) {
+                      const std::vector<Index>& dirty, const char* removed, UpdateWorkspace<Scalar>& ws) {
   typedef typename NumTraits<Scalar>::Real RealScalar;
   typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
-  std::vector<Dense> carried(f.count());  // W passed from a supernode to its parent
+  std::vector<Dense>& carried = ws.carried;  // W passed from a supernode to its parent
   double flops = 0;
   std::vector<Index> removedPositions, removedColumns;
   for (Index s : dirty) {
@@ -108,30 +184,9 @@ double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std
       }
     }
     if (rank == 0) continue;
-    // 3. fold W into the kept columns with Givens rotations: [L(:,j) W(:,q)] G, G unitary
-    for (Index j = 0; j < nc; ++j) {
-      if (removed[node.rows[j]]) continue;
-      Scalar* lj = L + j * nr;
-      for (Index t = 0; t < rank; ++t) {
-        Scalar* w = W.data() + t * nr;
-        const Scalar wj = w[j];
-        if (wj == Scalar(0)) continue;
-        const RealScalar ljj = numext::real(lj[j]);
-        const RealScalar r = numext::hypot(ljj, numext::abs(wj));
-        const RealScalar cosine = r / ljj;
-        const Scalar sine = wj / ljj;
-        const Scalar conjSine = numext::conj(sine);
-        lj[j] = Scalar(r);
-        w[j] = Scalar(0);
-        const RealScalar invCos = RealScalar(1) / cosine;
-        for (Index i = j + 1; i < nr; ++i) {
-          const Scalar l = (lj[i] + conjSine * w[i]) * invCos;
-          lj[i] = l;
-          w[i] = cosine * w[i] - sine * l;
-        }
-        flops += 4.0 * double(nr - j);
-      }
-    }
+    // 3. fold W into the kept columns: [L(:,J) W] G = [L'(:,J) W'] with G unitary and W' zero
+    //    on the supernode's own rows
+    flops += foldIntoColumns(node, W, removed);
     if (m == 0) continue;
     // 4. what is left of W lives on the rows below: compress, correct U, carry to the parent
     Dense out = W.bottomRows(m);

@@ -300,6 +300,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   std::vector<StorageIndex> m_removedList;
   UpdateRoute m_route = UpdateRoute::Automatic;
   UpdateStatistics m_lastUpdate;
+  internal::updatable_cholesky::UpdateWorkspace<Scalar> m_workspace;
+  double m_totalFlops = 0;
 
   internal::updatable_cholesky::NumericInput<Scalar> numericInput() const {
     internal::updatable_cholesky::NumericInput<Scalar> input;
@@ -341,16 +343,26 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
 
   // 1. fill-reducing ordering on the full symmetric pattern, as Eigen's solvers do
   PermutationType orderingPinv;
-  {
+  if (n > 1) {  // (METIS divides by zero on an empty graph; nothing to order anyway)
     CholMatrixType full;
     full = pa->template selfadjointView<UpLo_>();
     m_ordering(full, orderingPinv);
   }
-  std::vector<StorageIndex> perm(n);
+  std::vector<StorageIndex> perm(n, StorageIndex(-1));
   if (orderingPinv.size() == n) {
-    for (Index k = 0; k < n; ++k) perm[orderingPinv.indices()[k]] = StorageIndex(k);
-  } else {
+    for (Index k = 0; k < n; ++k) {
+      const Index old = orderingPinv.indices()[k];
+      if (old < 0 || old >= n || perm[old] != -1) {  // the ordering functor returned no permutation
+        m_info = InvalidInput;
+        return;
+      }
+      perm[old] = StorageIndex(k);
+    }
+  } else if (orderingPinv.size() == 0) {  // as in Eigen: an empty permutation means "natural order"
     for (Index k = 0; k < n; ++k) perm[k] = StorageIndex(k);
+  } else {
+    m_info = InvalidInput;
+    return;
   }
   // 2. elimination tree of the ordered matrix, composed with its postorder
   PermutedLowerEntries<StorageIndex> lower;
@@ -382,6 +394,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   m_Pinv = m_P.inverse();
   m_removedPermuted.assign(n, 0);
   m_removedOriginal.assign(n, 0);
+  m_workspace.resize(m_factor.count());
+  m_totalFlops = m_factor.flops();
   m_removedList.clear();
   m_values.clear();
   m_info = Success;
@@ -465,21 +479,21 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   using namespace internal::updatable_cholesky;
   const auto start = std::chrono::steady_clock::now();
   m_sparseLIsValid = false;
-  const std::vector<Index> dirty = dirtySupernodes(m_factor, m_upper, permutedColumns);
-  const double totalFlops = m_factor.flops(), dirtyFlops = supernodeFlops(m_factor, dirty);
+  const std::vector<Index> dirty = dirtySupernodes(m_factor, m_upper, permutedColumns, m_workspace);
+  const double totalFlops = m_totalFlops, dirtyFlops = supernodeFlops(m_factor, dirty);
   UpdateRoute route = m_route;
   if (route == UpdateRoute::LowRank && !isRemoval) route = UpdateRoute::Automatic;
   if (!m_numeric.hasCachedUpdates()) route = UpdateRoute::Refactorization;
   double lowRankFlops = 0;
   if (isRemoval && (route == UpdateRoute::Automatic || route == UpdateRoute::LowRank))
-    lowRankFlops = lowRankRemovalFlops(m_factor, dirty, permutedColumns);
+    lowRankFlops = lowRankRemovalFlops(m_factor, dirty, permutedColumns, m_workspace);
   if (route == UpdateRoute::Automatic) {  // the full factorization runs on all threads
     route = dirtyFlops * threadCount() > 0.9 * totalFlops ? UpdateRoute::Refactorization
                                                           : UpdateRoute::PartialRefactorization;
     if (isRemoval && lowRankFlops < (std::min)(dirtyFlops, totalFlops / threadCount())) route = UpdateRoute::LowRank;
   }
   if (route == UpdateRoute::LowRank) {  // cannot fail: removal keeps A positive definite
-    const double flops = lowRankRemoval(m_factor, m_numeric.cache(), dirty, m_removedPermuted.data());
+    const double flops = lowRankRemoval(m_factor, m_numeric.cache(), dirty, m_removedPermuted.data(), m_workspace);
     m_info = Success;
     UpdateStatistics& st = m_lastUpdate;
     st.route = route;
