@@ -1,0 +1,285 @@
+// In-place updates (paper §3.3, §4.1): random sequences of removeDofs / restoreDofs /
+// updateColumns on mesh Laplacians and random SPD matrices, each step checked against a fresh
+// factorization of the current matrix (A with the removed rows and columns replaced by those of
+// the identity) with the same permutation: equal to rounding for the exact routes, to solving
+// accuracy for the low-rank route. Also Dirichlet solves, and every error path (bad indices,
+// pattern mismatch, an update that is not positive definite) leaving a usable object.
+#include "test_checks.h"
+#include "test_config.h"
+#include "test_matrices.h"
+
+#include <unsupported/Eigen/MeshTools>
+
+#include <algorithm>
+#include <random>
+
+namespace {
+using namespace uctest;
+
+/** An ordering functor that returns a given permutation (to factor afresh in the same order). */
+template <typename StorageIndex>
+struct GivenOrdering {
+  typedef Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, StorageIndex> PermutationType;
+  PermutationType pinv;
+  template <typename MatrixType>
+  void operator()(const MatrixType&, PermutationType& p) {
+    p = pinv;
+  }
+};
+
+/** A with the rows and columns of the removed dofs replaced by those of the identity. */
+template <typename Cfg>
+typename Cfg::FullMatrix withIdentityRows(const typename Cfg::FullMatrix& A, const std::vector<char>& removed) {
+  typename Cfg::FullMatrix B = A;
+  for (Index j = 0; j < B.outerSize(); ++j)
+    for (typename Cfg::FullMatrix::InnerIterator it(B, j); it; ++it)
+      if (removed[it.row()] || removed[it.col()])
+        it.valueRef() = it.row() == it.col() ? typename Cfg::Scalar(1) : typename Cfg::Scalar(0);
+  return B;
+}
+
+template <typename Cfg>
+typename Cfg::FullMatrix testLaplacian(unsigned seed) {
+  typedef typename Cfg::Scalar Scalar;
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  if (seed % 2)
+    Eigen::gridMesh(23, 19, V, F);
+  else
+    Eigen::icosphereMesh(2, V, F);
+  typename Cfg::FullMatrix L = Eigen::cotanLaplacian<Scalar, typename Cfg::StorageIndex>(V, F);
+  typename Cfg::FullMatrix I(L.rows(), L.cols());
+  I.setIdentity();
+  typename Cfg::FullMatrix A = L + I * Scalar(1e-2);
+  A.makeCompressed();
+  return A;
+}
+
+/** Tolerances: exact routes reproduce a fresh factorization to rounding, the low-rank route to
+  * a few hundred roundings. */
+template <typename Cfg>
+double exactTolerance() {
+  return std::is_same<typename Cfg::RealScalar, double>::value ? 1e-14
+                                                                : 50 * double(Eigen::NumTraits<typename Cfg::RealScalar>::epsilon());
+}
+template <typename Cfg>
+double lowRankTolerance() {
+  return 1e4 * double(Eigen::NumTraits<typename Cfg::RealScalar>::epsilon());
+}
+
+/** Runs a random sequence of updates with one route and checks every step. */
+template <typename Cfg>
+void randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route, int steps, unsigned seed) {
+  typedef typename Cfg::Scalar Scalar;
+  typedef typename Cfg::StorageIndex StorageIndex;
+  typedef Eigen::UpdatableSupernodalLLT<typename Cfg::MatrixType, Cfg::UpLo, GivenOrdering<StorageIndex>> Fresh;
+  std::mt19937 g(seed);
+  const Index n = A0.rows();
+  typename Cfg::FullMatrix A = A0;
+  typename Cfg::Solver llt;
+  llt.setThreadCount(1);
+  llt.compute(toInput<Cfg>(A));
+  REQUIRE(llt.info() == Eigen::Success);
+  llt.setUpdateRoute(route);
+  std::vector<char> removed(n, 0);
+  std::vector<int> removedList;
+  for (int step = 0; step < steps; ++step) {
+    const int op = int(g() % 4);
+    std::vector<int> dofs;
+    bool lowRankStep = false;
+    if (op <= 1 || removedList.empty()) {  // remove a few dofs (a "seam": a run of neighbours or random)
+      const int count = 1 + int(g() % 12);
+      for (int k = 0; k < count; ++k) {
+        const int v = int(g() % n);
+        if (!removed[v] && std::find(dofs.begin(), dofs.end(), v) == dofs.end()) dofs.push_back(v);
+      }
+      llt.removeDofs(dofs);
+      for (int v : dofs) {
+        removed[v] = 1;
+        removedList.push_back(v);
+      }
+      lowRankStep = llt.lastUpdate().route == Eigen::UpdateRoute::LowRank;
+    } else if (op == 2) {  // restore some
+      std::shuffle(removedList.begin(), removedList.end(), g);
+      const int count = 1 + int(g() % removedList.size());
+      dofs.assign(removedList.begin(), removedList.begin() + count);
+      removedList.erase(removedList.begin(), removedList.begin() + count);
+      llt.restoreDofs(dofs);
+      for (int v : dofs) removed[v] = 0;
+    } else {  // change the values of a few columns (symmetric change, same pattern)
+      const int count = 1 + int(g() % 5);
+      for (int k = 0; k < count; ++k) dofs.push_back(int(g() % n));
+      std::sort(dofs.begin(), dofs.end());
+      dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+      for (int c : dofs)
+        for (typename Cfg::FullMatrix::InnerIterator it(A, c); it; ++it)
+          if (it.row() == c) it.valueRef() *= Scalar(1.5);  // diagonal: stays positive definite
+      llt.updateColumns(toInput<Cfg>(A), dofs);
+    }
+    CAPTURE(step);
+    CAPTURE(op);
+    REQUIRE(llt.info() == Eigen::Success);
+    const Eigen::UpdateStatistics& st = llt.lastUpdate();
+    CHECK(st.flopFraction >= 0);
+    CHECK(st.flopFraction <= 1.0 + 1e-12);
+    CHECK(st.dirtySupernodes <= llt.supernodeCount());
+    // fresh factorization of the current matrix in the same order
+    typename Cfg::FullMatrix current = withIdentityRows<Cfg>(A, removed);
+    Fresh fresh;
+    fresh.ordering().pinv = llt.permutationPinv();
+    fresh.setThreadCount(1);
+    fresh.compute(toInput<Cfg>(current));
+    REQUIRE(fresh.info() == Eigen::Success);
+    REQUIRE(fresh.permutationP().indices() == llt.permutationP().indices());
+    const double diff = factorDifference<Cfg>(llt, fresh);
+    const bool exact = route != Eigen::UpdateRoute::LowRank && route != Eigen::UpdateRoute::Automatic;
+    CHECK(diff <= (exact ? exactTolerance<Cfg>() : lowRankTolerance<Cfg>()));
+    (void)lowRankStep;
+    // and it solves the current matrix
+    typename Cfg::Dense b = randomDense<Cfg>(n, 2, g);
+    typename Cfg::Dense x = llt.solve(b);
+    const double res = double((current * x - b).norm() / b.norm());
+    CHECK(res <= lowRankTolerance<Cfg>());
+  }
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("random update sequences match a fresh factorization", Cfg, UC_CORE_CONFIGS) {
+  const int steps = Cfg::isPrimary ? 40 : 12;
+  for (unsigned seed : {1u, 2u}) {
+    const typename Cfg::FullMatrix A = testLaplacian<Cfg>(seed);
+    SUBCASE("partial refactorization (exact)") { randomSequence<Cfg>(A, Eigen::UpdateRoute::PartialRefactorization, steps, seed); }
+    SUBCASE("full refactorization (exact)") { randomSequence<Cfg>(A, Eigen::UpdateRoute::Refactorization, steps / 2, seed); }
+    SUBCASE("low-rank removals") { randomSequence<Cfg>(A, Eigen::UpdateRoute::LowRank, steps, seed); }
+    SUBCASE("automatic") { randomSequence<Cfg>(A, Eigen::UpdateRoute::Automatic, steps, seed); }
+  }
+  SUBCASE("random SPD matrix") {
+    std::mt19937 g(7);
+    const typename Cfg::FullMatrix A =
+        spdFromPattern<typename Cfg::Scalar, typename Cfg::StorageIndex>(randomPattern(300, 4.0, g), g);
+    randomSequence<Cfg>(A, Eigen::UpdateRoute::Automatic, steps, 3);
+    randomSequence<Cfg>(A, Eigen::UpdateRoute::PartialRefactorization, steps, 4);
+  }
+}
+
+TEST_CASE_TEMPLATE("partial refactorization is bitwise a fresh factorization", Cfg, uctest::d_int_col_lower_amd) {
+  typedef Eigen::UpdatableSupernodalLLT<typename Cfg::MatrixType, Cfg::UpLo, GivenOrdering<int>> Fresh;
+  const typename Cfg::FullMatrix A = testLaplacian<Cfg>(1);
+  typename Cfg::Solver llt;
+  llt.setThreadCount(1);
+  llt.setUpdateCaching(true);
+  llt.compute(toInput<Cfg>(A));
+  llt.setUpdateRoute(Eigen::UpdateRoute::PartialRefactorization);
+  std::vector<char> removed(A.rows(), 0);
+  const std::vector<int> seam = {3, 4, 5, 27, 28, 100, 101, 102};
+  llt.removeDofs(seam);
+  for (int v : seam) removed[v] = 1;
+  Fresh fresh;
+  fresh.ordering().pinv = llt.permutationPinv();
+  fresh.setThreadCount(1);
+  fresh.compute(toInput<Cfg>(withIdentityRows<Cfg>(A, removed)));
+  CHECK(sameFactorBitwise<Cfg>(llt, fresh));
+  CHECK(llt.lastUpdate().route == Eigen::UpdateRoute::PartialRefactorization);
+  CHECK(llt.lastUpdate().flopFraction < 1.0);
+  llt.restoreDofs(seam);
+  Fresh original;
+  original.ordering().pinv = llt.permutationPinv();
+  original.setThreadCount(1);
+  original.compute(toInput<Cfg>(A));
+  CHECK(sameFactorBitwise<Cfg>(llt, original));
+}
+
+TEST_CASE_TEMPLATE("Dirichlet solves", Cfg, UC_CORE_CONFIGS) {
+  typedef typename Cfg::Dense Dense;
+  const typename Cfg::FullMatrix A = testLaplacian<Cfg>(1);
+  const Index n = A.rows();
+  std::mt19937 g(11);
+  typename Cfg::Solver llt(toInput<Cfg>(A));
+  std::vector<int> B;
+  for (int i = 0; i < 40; ++i) B.push_back(int((i * 37) % n));
+  std::sort(B.begin(), B.end());
+  B.erase(std::unique(B.begin(), B.end()), B.end());
+  for (Eigen::UpdateRoute route : {Eigen::UpdateRoute::LowRank, Eigen::UpdateRoute::PartialRefactorization}) {
+    llt.setUpdateRoute(route);
+    llt.removeDofs(B);
+    REQUIRE(llt.info() == Eigen::Success);
+    const Dense b = randomDense<Cfg>(n, 3, g), known = randomDense<Cfg>(n, 3, g);
+    const Dense x = llt.solveDirichlet(b, known);
+    std::vector<char> isB(n, 0);
+    for (int v : B) isB[v] = 1;
+    const Dense r = A * x - b;
+    double worstInterior = 0, worstBoundary = 0;
+    for (Index i = 0; i < n; ++i)
+      for (Index c = 0; c < 3; ++c) {
+        if (isB[i])
+          worstBoundary = std::max(worstBoundary, double(std::abs(x(i, c) - known(i, c))));
+        else
+          worstInterior = std::max(worstInterior, double(std::abs(r(i, c))));
+      }
+    CHECK(worstBoundary == 0);
+    CHECK(worstInterior <= lowRankTolerance<Cfg>() * double(b.norm()));
+    llt.restoreDofs(B);
+    REQUIRE(llt.info() == Eigen::Success);
+    CHECK(llt.removedDofs().empty());
+  }
+}
+
+TEST_CASE_TEMPLATE("bad update input gives a clear error and a usable object", Cfg, UC_CORE_CONFIGS) {
+  typedef typename Cfg::Scalar Scalar;
+  const typename Cfg::FullMatrix A = testLaplacian<Cfg>(1);
+  const Index n = A.rows();
+  std::mt19937 g(5);
+  typename Cfg::Solver llt(toInput<Cfg>(A));
+  REQUIRE(llt.info() == Eigen::Success);
+  const typename Cfg::Dense b = randomDense<Cfg>(n, 1, g);
+  const typename Cfg::Dense x0 = llt.solve(b);
+  auto stillSolvesA = [&]() {
+    typename Cfg::Dense x = llt.solve(b);
+    CHECK(double((A * x - b).norm() / b.norm()) <= lowRankTolerance<Cfg>());
+  };
+  SUBCASE("index out of range") {
+    llt.removeDofs(std::vector<int>{0, int(n)});
+    CHECK(llt.info() == Eigen::InvalidInput);
+    llt.removeDofs(std::vector<int>{-1});
+    CHECK(llt.info() == Eigen::InvalidInput);
+    stillSolvesA();
+  }
+  SUBCASE("repeated index") {
+    llt.removeDofs(std::vector<int>{4, 7, 4});
+    CHECK(llt.info() == Eigen::InvalidInput);
+    CHECK(llt.removedDofs().empty());
+    stillSolvesA();
+  }
+  SUBCASE("removing a removed dof, restoring a dof that is not removed") {
+    llt.removeDofs(std::vector<int>{5});
+    REQUIRE(llt.info() == Eigen::Success);
+    llt.removeDofs(std::vector<int>{6, 5});
+    CHECK(llt.info() == Eigen::InvalidInput);
+    CHECK(llt.removedDofs().size() == 1);
+    llt.restoreDofs(std::vector<int>{6});
+    CHECK(llt.info() == Eigen::InvalidInput);
+    llt.restoreDofs(std::vector<int>{5});
+    CHECK(llt.info() == Eigen::Success);
+    stillSolvesA();
+  }
+  SUBCASE("pattern mismatch in updateColumns") {
+    typename Cfg::FullMatrix other = A;
+    other.coeffRef(0, n - 1) = Scalar(0.001);
+    other.coeffRef(n - 1, 0) = Scalar(0.001);
+    llt.updateColumns(toInput<Cfg>(other), std::vector<int>{0});
+    CHECK(llt.info() == Eigen::InvalidInput);
+    stillSolvesA();
+  }
+  SUBCASE("an update that makes the matrix indefinite leaves the previous factor") {
+    typename Cfg::FullMatrix bad = A;
+    bad.coeffRef(3, 3) = Scalar(-1);
+    llt.updateColumns(toInput<Cfg>(bad), std::vector<int>{3});
+    CHECK(llt.info() == Eigen::NumericalIssue);
+    CHECK(llt.failedColumn() >= 0);
+    stillSolvesA();
+    // and the object goes on updating
+    llt.removeDofs(std::vector<int>{1, 2});
+    CHECK(llt.info() == Eigen::Success);
+  }
+}
