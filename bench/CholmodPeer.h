@@ -115,6 +115,12 @@ public:
   /** \returns CHOLMOD's own count of its peak memory use in bytes since construction (Common.memory_usage). */
   std::size_t reportedPeakMemory() const { return m_common.memory_usage; }
 
+  /** \returns the factor itself (null before analyze()), for peers that work on CHOLMOD's
+    * supernodal layout directly (SchurPeer.h) or convert a copy of it (RowdelPeer.h). */
+  cholmod_factor* factor() { return m_factor; }
+  /** \returns the CHOLMOD workspace the factor belongs to; pass it to every call on factor(). */
+  cholmod_common& common() { return m_common; }
+
 private:
   static cholmod_sparse view(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& A)
   {
