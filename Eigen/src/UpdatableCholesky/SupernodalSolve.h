@@ -13,6 +13,9 @@ namespace Eigen {
 namespace internal {
 namespace updatable_cholesky {
 
+/** \internal Supernodes up to this many columns are solved with inline column loops. */
+enum { SmallSolveColumns = 24 };
+
 /** \internal x := L^{-1} x for one right-hand side (matrix-vector kernels). */
 template <typename Scalar, typename StorageIndex>
 void forwardSolveVector(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* x, Scalar* work) {
@@ -20,9 +23,20 @@ void forwardSolveVector(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar*
     const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
     const Scalar* L = node.values.data();
     Scalar* xs = x + node.firstCol;
-    trsvLower(false, nc, L, nr, xs);
-    if (m == 0) continue;
-    gemvProduct(false, m, nc, L + nc, nr, xs, work);
+    if (nc <= SmallSolveColumns) {  // one pass down each column: x_S and the product below
+      std::fill(work, work + m, Scalar(0));
+      for (Index j = 0; j < nc; ++j) {
+        const Scalar* lj = L + j * nr;
+        const Scalar xj = (xs[j] /= lj[j]);
+        for (Index i = j + 1; i < nc; ++i) xs[i] -= lj[i] * xj;
+        const Scalar* lb = lj + nc;
+        for (Index i = 0; i < m; ++i) work[i] += lb[i] * xj;
+      }
+    } else {
+      trsvLower(false, nc, L, nr, xs);
+      if (m == 0) continue;
+      gemvProduct(false, m, nc, L + nc, nr, xs, work);
+    }
     const StorageIndex* rows = node.rows.data() + nc;
     for (Index i = 0; i < m; ++i) x[rows[i]] -= work[i];
   }
@@ -36,11 +50,21 @@ void backwardSolveVector(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar
     const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
     const Scalar* L = node.values.data();
     Scalar* xs = x + node.firstCol;
-    if (m > 0) {
-      const StorageIndex* rows = node.rows.data() + nc;
-      for (Index i = 0; i < m; ++i) work[i] = x[rows[i]];
-      gemvProduct(true, m, nc, L + nc, nr, work, xs);
+    const StorageIndex* rows = node.rows.data() + nc;
+    for (Index i = 0; i < m; ++i) work[i] = x[rows[i]];
+    if (nc <= SmallSolveColumns) {  // one pass up each column: dot products with x
+      for (Index j = nc - 1; j >= 0; --j) {
+        const Scalar* lj = L + j * nr;
+        Scalar sum = xs[j];
+        for (Index i = j + 1; i < nc; ++i) sum -= numext::conj(lj[i]) * xs[i];
+        const Scalar* lb = lj + nc;
+        Scalar below(0);
+        for (Index i = 0; i < m; ++i) below += numext::conj(lb[i]) * work[i];
+        xs[j] = (sum - below) / numext::conj(lj[j]);
+      }
+      continue;
     }
+    if (m > 0) gemvProduct(true, m, nc, L + nc, nr, work, xs);
     trsvLower(true, nc, L, nr, xs);
   }
 }
