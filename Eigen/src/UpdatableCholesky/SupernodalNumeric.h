@@ -105,8 +105,8 @@ struct UpdateStack {
   }
 };
 
-/** \internal What a numeric factorization reads: the input's value array, the shift
-  * (scale*A + offset*I), and optionally the removed (Dirichlet) dofs in the permuted numbering,
+/** \internal What a numeric factorization reads: the input's value array, the shift of the
+  * diagonal (d_ii -> offset + scale*d_ii, as Eigen's setShift), and optionally the removed (Dirichlet) dofs in the permuted numbering,
   * whose rows and columns are those of the identity. */
 template <typename Scalar>
 struct NumericInput {
@@ -215,7 +215,7 @@ class SupernodalNumeric {
         if (!factorNode(f, s, in, worker)) return;
   }
 
-  /** Scatters the supernode's columns of the input into its zeroed block: scaled, shifted, and
+  /** Scatters the supernode's columns of the input into its zeroed block: diagonal shifted, and
     * with removed dofs' rows and columns replaced by those of the identity. */
   static void assemble(Node& node, const Input& in) {
     const Index nr = node.nrows(), nc = node.ncols;
@@ -232,12 +232,12 @@ class SupernodalNumeric {
         const Index t = target[k];
         const Scalar v = in.values[source[k]];
         if (t >= 0)
-          L[t] = in.scale * v;
+          L[t] = v;
         else
-          L[~t] = in.scale * numext::conj(v);
+          L[~t] = numext::conj(v);
       }
-      if (in.offset != RealScalar(0))
-        for (Index c = 0; c < nc; ++c) L[c * nr + c] += in.offset;
+      if (in.offset != RealScalar(0) || in.scale != RealScalar(1))
+        for (Index c = 0; c < nc; ++c) L[c * nr + c] = in.offset + in.scale * L[c * nr + c];
       return;
     }
     for (Index k = 0; k < na; ++k) {
@@ -245,9 +245,10 @@ class SupernodalNumeric {
       const Index c = t / nr, r = t - c * nr;
       if (in.removed[node.rows[r]] || in.removed[node.rows[c]]) continue;
       const Scalar v = in.values[source[k]];
-      L[t] = in.scale * (target[k] >= 0 ? v : numext::conj(v));
+      L[t] = target[k] >= 0 ? v : numext::conj(v);
     }
-    for (Index c = 0; c < nc; ++c) L[c * nr + c] = in.removed[node.rows[c]] ? Scalar(1) : L[c * nr + c] + in.offset;
+    for (Index c = 0; c < nc; ++c)
+      L[c * nr + c] = in.removed[node.rows[c]] ? Scalar(1) : in.offset + in.scale * L[c * nr + c];
   }
 
   /** Assembles, factors and forms the update matrix of supernode s, on stack \a stackId or in

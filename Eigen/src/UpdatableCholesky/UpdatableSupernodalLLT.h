@@ -137,8 +137,9 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     return RealScalar(2) * sum;
   }
 
-  /** Factor \f$ scale \cdot A + offset \cdot I \f$ instead of A from the next factorize() on.
-    * \returns a reference to *this. */
+  /** Sets the shift of the diagonal used by the next factorizations, as SimplicialLLT does:
+    * every diagonal coefficient d_ii becomes \f$ offset + scale \cdot d_{ii} \f$ (off-diagonal
+    * coefficients are not scaled). \returns a reference to *this. */
   UpdatableSupernodalLLT& setShift(const RealScalar& offset, const RealScalar& scale = 1) {
     m_shiftOffset = offset;
     m_shiftScale = scale;
