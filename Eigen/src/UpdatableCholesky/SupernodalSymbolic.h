@@ -1,7 +1,7 @@
 // SupernodalSymbolic.h — symbolic analysis of a supernodal Cholesky factorization (paper §3.2,
 // §3.4): elimination tree, postorder, column counts of L (Gilbert–Ng–Peyton, with the row-subtree
 // skeleton and a union-find for least common ancestors, never forming L's pattern), fundamental
-// supernodes, relaxed amalgamation in the manner of CHOLMOD, the supernodal elimination tree and
+// supernodes, relaxed amalgamation with the classic nrelax/zrelax rule, the supernodal elimination tree and
 // the row structure of every supernode.
 //
 // Input: the pattern of the lower triangle of a symmetric n×n matrix C (already permuted by the
@@ -18,7 +18,7 @@
 namespace Eigen {
 
 /** \ingroup UpdatableCholesky_Module
-  * \brief Tuning of relaxed supernode amalgamation (CHOLMOD's nrelax/zrelax, same defaults).
+  * \brief Tuning of relaxed supernode amalgamation (the usual nrelax/zrelax rule and defaults of supernodal codes).
   *
   * A child supernode is merged into its parent when the merged supernode has at most
   * \c nrelax[0] columns, or when the fraction of explicit zeros it would store stays below
@@ -151,7 +151,7 @@ struct SupernodalPartition {
 
 /** \internal Groups the columns of a postordered tree into fundamental supernodes, then merges
   * each supernode into the supernode that follows it when that one contains its parent and the
-  * relaxation rule allows (CHOLMOD's rule). Only the last column of a resulting supernode has
+  * relaxation rule allows. Only the last column of a resulting supernode has
   * its etree parent outside it. */
 template <typename StorageIndex>
 void relaxedSupernodes(const std::vector<StorageIndex>& parent, const std::vector<StorageIndex>& colCount,

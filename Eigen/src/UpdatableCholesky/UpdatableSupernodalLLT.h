@@ -41,7 +41,7 @@ class UpdatableSupernodalLLT;
   *         MetisOrdering, or any functor with `void operator()(const Matrix&, PermutationMatrix&)`
   *
   * \implsparsesolverconcept
-  * \sa SimplicialLLT, CholmodSupernodalLLT
+  * \sa SimplicialLLT
   */
 template <typename MatrixType_, int UpLo_, typename Ordering_>
 class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_> > {
