@@ -313,6 +313,12 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     return input;
   }
   bool beginUpdate();
+  /** Checks dofs to remove (removed=false) or restore (removed=true); fills their A-numbered
+    * and permuted lists, or sets InvalidInput. */
+  template <typename Indices>
+  bool checkDofs(const Indices& dofs, bool removed, std::vector<StorageIndex>& list,
+                 std::vector<StorageIndex>& permuted);
+  void setRemovedFlags(const std::vector<StorageIndex>& list, char flag);
   template <typename Revert>
   void applyUpdate(const std::vector<StorageIndex>& permutedColumns, bool isRemoval, Revert&& revert);
 };
@@ -563,30 +569,41 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
 template <typename Indices>
-UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::removeDofs(
-    const Indices& dofs) {
-  if (!beginUpdate()) return *this;
-  std::vector<StorageIndex> list;
+bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::checkDofs(const Indices& dofs, bool removed,
+                                                                      std::vector<StorageIndex>& list,
+                                                                      std::vector<StorageIndex>& permuted) {
   const char* why = nullptr;
   bool ok = internal::updatable_cholesky::checkIndices(dofs, m_n, list, why);
-  for (Index k = 0; ok && k < Index(list.size()); ++k) ok = !m_removedOriginal[list[k]];
+  for (Index k = 0; ok && k < Index(list.size()); ++k) ok = (m_removedOriginal[list[k]] != 0) == removed;
   if (!ok) {
     m_info = InvalidInput;
-    return *this;
+    return false;
   }
-  std::vector<StorageIndex> cols(list.size());
-  auto setFlags = [&](char flag) {
-    for (Index k = 0; k < Index(list.size()); ++k) {
-      m_removedOriginal[list[k]] = flag;
-      m_removedPermuted[m_P.indices()[list[k]]] = flag;
-    }
-  };
-  for (Index k = 0; k < Index(list.size()); ++k) cols[k] = m_P.indices()[list[k]];
+  permuted.resize(list.size());
+  for (Index k = 0; k < Index(list.size()); ++k) permuted[k] = m_P.indices()[list[k]];
+  return true;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::setRemovedFlags(const std::vector<StorageIndex>& list,
+                                                                            char flag) {
+  for (StorageIndex i : list) {
+    m_removedOriginal[i] = flag;
+    m_removedPermuted[m_P.indices()[i]] = flag;
+  }
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Indices>
+UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::removeDofs(
+    const Indices& dofs) {
+  std::vector<StorageIndex> list, cols;
+  if (!beginUpdate() || !checkDofs(dofs, false, list, cols)) return *this;
   const Index previousCount = Index(m_removedList.size());
-  setFlags(1);
+  setRemovedFlags(list, 1);
   m_removedList.insert(m_removedList.end(), list.begin(), list.end());
   applyUpdate(cols, true, [&]() {
-    setFlags(0);
+    setRemovedFlags(list, 0);
     m_removedList.resize(previousCount);
   });
   return *this;
@@ -596,30 +613,15 @@ template <typename MatrixType_, int UpLo_, typename Ordering_>
 template <typename Indices>
 UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreDofs(
     const Indices& dofs) {
-  if (!beginUpdate()) return *this;
-  std::vector<StorageIndex> list;
-  const char* why = nullptr;
-  bool ok = internal::updatable_cholesky::checkIndices(dofs, m_n, list, why);
-  for (Index k = 0; ok && k < Index(list.size()); ++k) ok = m_removedOriginal[list[k]] != 0;
-  if (!ok) {
-    m_info = InvalidInput;
-    return *this;
-  }
-  std::vector<StorageIndex> cols(list.size());
-  auto setFlags = [&](char flag) {
-    for (Index k = 0; k < Index(list.size()); ++k) {
-      m_removedOriginal[list[k]] = flag;
-      m_removedPermuted[m_P.indices()[list[k]]] = flag;
-    }
-  };
-  for (Index k = 0; k < Index(list.size()); ++k) cols[k] = m_P.indices()[list[k]];
+  std::vector<StorageIndex> list, cols;
+  if (!beginUpdate() || !checkDofs(dofs, true, list, cols)) return *this;
   const std::vector<StorageIndex> previousList = m_removedList;
-  setFlags(0);
+  setRemovedFlags(list, 0);
   m_removedList.erase(std::remove_if(m_removedList.begin(), m_removedList.end(),
                                      [&](StorageIndex i) { return !m_removedOriginal[i]; }),
                       m_removedList.end());
   applyUpdate(cols, false, [&]() {
-    setFlags(1);
+    setRemovedFlags(list, 1);
     m_removedList = previousList;
   });
   return *this;
