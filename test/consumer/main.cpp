@@ -1,5 +1,5 @@
-// Consumer check: factors and solves a 1-D Laplacian with the installed library; exits non-zero
-// when the residual is not tiny.
+// Consumer check: factors and solves a 1-D Laplacian with the installed library, and updates it in
+// place once; exits non-zero when the residual is not tiny or the update fails.
 #include <Eigen/UpdatableCholesky>
 #include <iostream>
 
@@ -16,6 +16,14 @@ int main() {
   Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
   Eigen::VectorXd x = llt.solve(b);
   const double residual = (A.selfadjointView<Eigen::Lower>() * x - b).norm() / b.norm();
-  std::cout << "consumer: info " << llt.info() << ", residual " << residual << "\n";
-  return (llt.info() == Eigen::Success && residual < 1e-10) ? 0 : 1;
+  // an in-place update through the installed headers alone: fix dof 0 to 1, solve, undo
+  llt.removeDofs(std::vector<int>{0});
+  const bool removed = llt.info() == Eigen::Success;
+  Eigen::VectorXd g = Eigen::VectorXd::Ones(n);
+  Eigen::MatrixXd xd = llt.solveDirichlet(b, g);
+  llt.restoreDofs(std::vector<int>{0});
+  const bool ok = removed && llt.info() == Eigen::Success && xd(0, 0) == 1.0;
+  std::cout << "consumer: info " << llt.info() << ", residual " << residual << ", update " << (ok ? "ok" : "FAILED")
+            << "\n";
+  return (llt.info() == Eigen::Success && residual < 1e-10 && ok) ? 0 : 1;
 }
