@@ -312,6 +312,13 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     input.removed = m_removedList.empty() ? nullptr : m_removedPermuted.data();
     return input;
   }
+  /** The input itself when compressed, else a compressed copy of it in \a copy. */
+  static const MatrixType* compressedInput(const MatrixType& a, MatrixType& copy) {
+    if (a.isCompressed()) return &a;
+    copy = a;
+    copy.makeCompressed();
+    return &copy;
+  }
   bool beginUpdate();
   /** Checks dofs to remove (removed=false) or restore (removed=true); fills their A-numbered
     * and permuted lists, or sets InvalidInput. */
@@ -340,12 +347,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   m_n = n;
   // A compressed view of the input (copied only when the user's matrix is not compressed).
   MatrixType copy;
-  const MatrixType* pa = &a;
-  if (!a.isCompressed()) {
-    copy = a;
-    copy.makeCompressed();
-    pa = &copy;
-  }
+  const MatrixType* pa = compressedInput(a, copy);
   m_pattern.assign(*pa);
 
   // 1. fill-reducing ordering on the full symmetric pattern, as Eigen's solvers do
@@ -421,12 +423,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::factorize(const Matr
     return;
   }
   MatrixType copy;
-  const MatrixType* pa = &a;
-  if (!a.isCompressed()) {
-    copy = a;
-    copy.makeCompressed();
-    pa = &copy;
-  }
+  const MatrixType* pa = compressedInput(a, copy);
   if (!m_pattern.matches(*pa)) {
     m_info = InvalidInput;
     return;
@@ -548,12 +545,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     const MatrixType& a, const Indices& columns) {
   if (!beginUpdate()) return *this;
   MatrixType copy;
-  const MatrixType* pa = &a;
-  if (!a.isCompressed()) {
-    copy = a;
-    copy.makeCompressed();
-    pa = &copy;
-  }
+  const MatrixType* pa = compressedInput(a, copy);
   std::vector<StorageIndex> cols;
   const char* why = nullptr;
   if (!m_pattern.matches(*pa) || !internal::updatable_cholesky::checkIndices(columns, m_n, cols, why)) {
