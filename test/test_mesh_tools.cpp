@@ -1,0 +1,444 @@
+// Mesh topology tools of unsupported/Eigen/MeshTools against independent oracles: boundaryLoops
+// (loop count, length, orientation by signed area), shortestEdgePath (breadth-first search and
+// Floyd-Warshall on small grids), cutMesh / cutMeshAlongPath (vertex copies, Euler
+// characteristic, face correspondence through origin, boundary edges, disks from trees), and
+// massMatrix (total area, positive diagonal, hand-computed triangles).
+#include <doctest/doctest.h>
+
+#include <unsupported/Eigen/MeshTools>
+
+#include <map>
+#include <set>
+
+namespace {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::MatrixXi;
+using Eigen::VectorXi;
+
+/** Undirected edges of F with the number of faces on each. */
+std::map<std::pair<int, int>, int> edgeUse(const MatrixXi& F) {
+  std::map<std::pair<int, int>, int> use;
+  for (Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      ++use[{std::min(a, b), std::max(a, b)}];
+    }
+  return use;
+}
+
+/** V - E + F counting only the vertices used by faces. */
+int eulerCharacteristic(const MatrixXi& F) {
+  std::set<int> used(F.data(), F.data() + F.size());
+  return int(used.size()) - int(edgeUse(F).size()) + int(F.rows());
+}
+
+/** Signed area of a loop of vertices in the xy-plane (positive: counter-clockwise). */
+double signedArea(const MatrixXd& V, const std::vector<int>& loop) {
+  double area = 0;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const int a = loop[i], b = loop[(i + 1) % loop.size()];
+    area += V(a, 0) * V(b, 1) - V(b, 0) * V(a, 1);
+  }
+  return 0.5 * area;
+}
+
+/** Each consecutive pair of the loop is a boundary side a -> b of some face (in that direction). */
+void checkLoopIsBoundary(const MatrixXi& F, const std::vector<int>& loop) {
+  const auto use = edgeUse(F);
+  std::set<std::pair<int, int>> sides;
+  for (Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) sides.insert({F(f, k), F(f, (k + 1) % 3)});
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const int a = loop[i], b = loop[(i + 1) % loop.size()];
+    INFO("loop edge " << a << " -> " << b);
+    CHECK(use.at({std::min(a, b), std::max(a, b)}) == 1);
+    CHECK(sides.count({a, b}) == 1);
+  }
+}
+
+/** Number of boundary edges (used by one face). */
+int boundaryEdgeCount(const MatrixXi& F) {
+  int count = 0;
+  for (const auto& e : edgeUse(F)) count += e.second == 1;
+  return count;
+}
+
+/** Hop distances from source by breadth-first search over an explicit edge set. */
+std::vector<int> bfsDistances(const MatrixXi& F, int n, int source) {
+  std::vector<std::vector<int>> adjacent(n);
+  for (const auto& e : edgeUse(F)) {
+    adjacent[e.first.first].push_back(e.first.second);
+    adjacent[e.first.second].push_back(e.first.first);
+  }
+  std::vector<int> distance(n, -1), queue{source};
+  distance[source] = 0;
+  for (std::size_t head = 0; head < queue.size(); ++head)
+    for (int w : adjacent[queue[head]])
+      if (distance[w] < 0) {
+        distance[w] = distance[queue[head]] + 1;
+        queue.push_back(w);
+      }
+  return distance;
+}
+
+/** Checks that path runs from s to t along edges of F and returns its Euclidean length. */
+double checkedPathLength(const MatrixXd& V, const MatrixXi& F, const std::vector<int>& path, int s, int t) {
+  REQUIRE(!path.empty());
+  CHECK(path.front() == s);
+  CHECK(path.back() == t);
+  const auto use = edgeUse(F);
+  double length = 0;
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const int a = path[i], b = path[i + 1];
+    CHECK(use.count({std::min(a, b), std::max(a, b)}) == 1);
+    length += (V.row(a) - V.row(b)).norm();
+  }
+  return length;
+}
+
+/** The invariants of every cut: face count, faces map back through origin, positions copied. */
+void checkCutCorrespondence(const MatrixXd& V, const MatrixXi& F, const MatrixXd& Vcut, const MatrixXi& Fcut,
+                            const VectorXi& origin) {
+  REQUIRE(Fcut.rows() == F.rows());
+  REQUIRE(origin.size() == Vcut.rows());
+  REQUIRE(Vcut.rows() >= V.rows());
+  for (Index i = 0; i < V.rows(); ++i) CHECK(origin[i] == i);
+  for (Index i = 0; i < Vcut.rows(); ++i) {
+    REQUIRE(origin[i] >= 0);
+    REQUIRE(origin[i] < V.rows());
+    CHECK(Vcut.row(i) == V.row(origin[i]));
+  }
+  for (Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) CHECK(origin[Fcut(f, k)] == F(f, k));
+}
+
+/** Each cut edge {a, b} of F that was interior has become two distinct boundary edges of Fcut. */
+void checkCutEdgesOpened(const MatrixXi& F, const MatrixXi& Fcut, const VectorXi& origin,
+                         const std::vector<std::array<int, 2>>& cut) {
+  const auto before = edgeUse(F);
+  const auto after = edgeUse(Fcut);
+  for (const auto& e : cut) {
+    const std::pair<int, int> key{std::min(e[0], e[1]), std::max(e[0], e[1])};
+    if (before.at(key) != 2) continue;
+    int copies = 0;
+    for (const auto& edge : after) {
+      const int a = origin[edge.first.first], b = origin[edge.first.second];
+      if (std::make_pair(std::min(a, b), std::max(a, b)) != key) continue;
+      ++copies;
+      CHECK(edge.second == 1);
+    }
+    INFO("cut edge " << e[0] << " " << e[1]);
+    CHECK(copies == 2);
+  }
+}
+
+std::vector<std::array<int, 2>> pathEdges(const std::vector<int>& path) {
+  std::vector<std::array<int, 2>> edges;
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) edges.push_back({path[i], path[i + 1]});
+  return edges;
+}
+
+} // namespace
+
+TEST_CASE("boundaryLoops: grid, icosphere, hole, separate pieces, bowtie") {
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::gridMesh(6, 4, V, F);
+  auto loops = Eigen::boundaryLoops(F);
+  REQUIRE(loops.size() == 1);
+  CHECK(loops[0].size() == 2 * 5 + 2 * 3);
+  CHECK(signedArea(V, loops[0]) == doctest::Approx(1.0)); // counter-clockwise around the unit square
+  checkLoopIsBoundary(F, loops[0]);
+  CHECK(std::set<int>(loops[0].begin(), loops[0].end()).size() == loops[0].size());
+
+  MatrixXd S;
+  MatrixXi G;
+  Eigen::icosphereMesh(2, S, G);
+  CHECK(Eigen::boundaryLoops(G).empty());
+
+  // A hole: drop the two triangles of the cell (2, 1) of a 6 x 5 grid; its loop runs clockwise.
+  Eigen::gridMesh(6, 5, V, F);
+  const int cell = 1 * 5 + 2;
+  MatrixXi H(F.rows() - 2, 3);
+  for (Index f = 0, g = 0; f < F.rows(); ++f)
+    if (f / 2 != cell) H.row(g++) = F.row(f);
+  loops = Eigen::boundaryLoops(H);
+  REQUIRE(loops.size() == 2);
+  CHECK(loops[0].size() == 18);
+  CHECK(loops[1].size() == 4);
+  CHECK(signedArea(V, loops[0]) == doctest::Approx(1.0));
+  CHECK(signedArea(V, loops[1]) == doctest::Approx(-1.0 / 20));
+  checkLoopIsBoundary(H, loops[0]);
+  checkLoopIsBoundary(H, loops[1]);
+
+  // Two separate grids, the smaller first in F: the longer loop comes first.
+  MatrixXd V1, V2;
+  MatrixXi F1, F2;
+  Eigen::gridMesh(2, 2, V1, F1);
+  Eigen::gridMesh(4, 3, V2, F2);
+  MatrixXi both(F1.rows() + F2.rows(), 3);
+  both << F1, (F2.array() + int(V1.rows())).matrix();
+  loops = Eigen::boundaryLoops(both);
+  REQUIRE(loops.size() == 2);
+  CHECK(loops[0].size() == 10);
+  CHECK(loops[1].size() == 4);
+
+  // Two triangles touching at vertex 0: one loop per triangle, each through vertex 0.
+  MatrixXi bowtie(2, 3);
+  bowtie << 0, 1, 2, 0, 3, 4;
+  loops = Eigen::boundaryLoops(bowtie);
+  REQUIRE(loops.size() == 2);
+  for (const auto& loop : loops) {
+    CHECK(loop.size() == 3);
+    CHECK(std::count(loop.begin(), loop.end(), 0) == 1);
+    checkLoopIsBoundary(bowtie, loop);
+  }
+
+  CHECK(Eigen::boundaryLoops(MatrixXi(0, 3)).empty());
+  MatrixXi negative(1, 3);
+  negative << 0, -1, 2;
+  CHECK(Eigen::boundaryLoops(negative).empty());
+}
+
+TEST_CASE("shortestEdgePath: hop counts against BFS, lengths against Floyd-Warshall") {
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::gridMesh(7, 5, V, F);
+  const int n = int(V.rows());
+  // Jitter the vertices so that edge lengths differ and shortest paths are unique.
+  std::mt19937 generator(7);
+  std::uniform_real_distribution<double> jitter(-0.04, 0.04);
+  for (Index i = 0; i < V.rows(); ++i) {
+    V(i, 0) += jitter(generator);
+    V(i, 1) += jitter(generator);
+  }
+
+  // Floyd-Warshall over the edges.
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::vector<double>> d(n, std::vector<double>(n, inf));
+  for (int i = 0; i < n; ++i) d[i][i] = 0;
+  for (const auto& e : edgeUse(F)) {
+    const double w = (V.row(e.first.first) - V.row(e.first.second)).norm();
+    d[e.first.first][e.first.second] = d[e.first.second][e.first.first] = w;
+  }
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) d[i][j] = std::min(d[i][j], d[i][k] + d[k][j]);
+
+  for (int s = 0; s < n; s += 3) {
+    const std::vector<int> hops = bfsDistances(F, n, s);
+    for (int t = 0; t < n; t += 2) {
+      INFO("source " << s << " target " << t);
+      const std::vector<int> byHops = Eigen::shortestEdgePath(V, F, s, t, false);
+      checkedPathLength(V, F, byHops, s, t);
+      CHECK(int(byHops.size()) - 1 == hops[t]);
+
+      const std::vector<int> forward = Eigen::shortestEdgePath(V, F, s, t);
+      const std::vector<int> backward = Eigen::shortestEdgePath(V, F, t, s);
+      const double lengthForward = checkedPathLength(V, F, forward, s, t);
+      const double lengthBackward = checkedPathLength(V, F, backward, t, s);
+      CHECK(lengthForward == doctest::Approx(d[s][t]).epsilon(1e-12));
+      CHECK(lengthBackward == doctest::Approx(lengthForward).epsilon(1e-12));
+    }
+  }
+
+  CHECK(Eigen::shortestEdgePath(V, F, 4, 4) == std::vector<int>{4});
+  CHECK(Eigen::shortestEdgePath(V, F, -1, 4).empty());
+  CHECK(Eigen::shortestEdgePath(V, F, 0, n).empty());
+
+  // Two components: no path between them; an isolated vertex reaches nothing.
+  MatrixXd V2(7, 3);
+  V2.setRandom();
+  MatrixXi F2(2, 3);
+  F2 << 0, 1, 2, 3, 4, 5;
+  CHECK(Eigen::shortestEdgePath(V2, F2, 0, 4).empty());
+  CHECK(Eigen::shortestEdgePath(V2, F2, 6, 0, false).empty());
+  CHECK(Eigen::shortestEdgePath(V2, F2, 0, 2).size() == 2);
+  F2(1, 2) = 7; // out of range
+  CHECK(Eigen::shortestEdgePath(V2, F2, 0, 2).empty());
+}
+
+TEST_CASE("cutMesh: a path through the interior of a grid opens a slit") {
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::gridMesh(9, 9, V, F);
+  for (int l = 2; l <= 7; ++l) {
+    // Horizontal path on row 4 from column 1: interior vertices only.
+    std::vector<int> path;
+    for (int i = 1; i < 1 + l; ++i) path.push_back(4 * 9 + i);
+    INFO("path of " << l << " vertices");
+    MatrixXd Vcut;
+    MatrixXi Fcut;
+    VectorXi origin;
+    std::string error = "stale";
+    REQUIRE(Eigen::cutMeshAlongPath(V, F, path, Vcut, Fcut, origin, &error));
+    CHECK(error.empty());
+    CHECK(Vcut.rows() == V.rows() + l - 2);
+    checkCutCorrespondence(V, F, Vcut, Fcut, origin);
+    if (l == 2) { // one edge between two interior vertices: neither fan is split, nothing opens
+      CHECK(Fcut == F);
+      continue;
+    }
+    checkCutEdgesOpened(F, Fcut, origin, pathEdges(path));
+    // A slit is a hole: the Euler characteristic drops from 1 to 0, a second loop appears.
+    CHECK(eulerCharacteristic(Fcut) == 0);
+    const auto loops = Eigen::boundaryLoops(Fcut);
+    REQUIRE(loops.size() == 2);
+    CHECK(loops[0].size() == 32);
+    CHECK(loops[1].size() == std::size_t(2 * (l - 1)));
+    checkLoopIsBoundary(Fcut, loops[1]);
+    // The copies are of the interior path vertices, one each.
+    std::multiset<int> copied(origin.data() + V.rows(), origin.data() + origin.size());
+    for (int i = 1; i + 1 < l; ++i) CHECK(copied.count(path[i]) == 1);
+  }
+}
+
+TEST_CASE("cutMesh: a path from the boundary opens the disk, Euler characteristic kept") {
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::gridMesh(8, 6, V, F);
+  const std::size_t loopBefore = Eigen::boundaryLoops(F)[0].size();
+  for (int l = 2; l <= 5; ++l) {
+    // Vertical path from the bottom boundary at column 3 upwards.
+    std::vector<int> path;
+    for (int j = 0; j < l; ++j) path.push_back(j * 8 + 3);
+    MatrixXd Vcut;
+    MatrixXi Fcut;
+    VectorXi origin;
+    REQUIRE(Eigen::cutMeshAlongPath(V, F, path, Vcut, Fcut, origin));
+    CHECK(Vcut.rows() == V.rows() + l - 1);
+    checkCutCorrespondence(V, F, Vcut, Fcut, origin);
+    checkCutEdgesOpened(F, Fcut, origin, pathEdges(path));
+    CHECK(eulerCharacteristic(Fcut) == eulerCharacteristic(F));
+    CHECK(boundaryEdgeCount(Fcut) == boundaryEdgeCount(F) + 2 * (l - 1));
+    const auto loops = Eigen::boundaryLoops(Fcut);
+    REQUIRE(loops.size() == 1);
+    CHECK(loops[0].size() == loopBefore + 2 * (l - 1));
+    checkLoopIsBoundary(Fcut, loops[0]);
+    // The loop still runs counter-clockwise around the same area (the slit has none).
+    CHECK(signedArea(Vcut, loops[0]) == doctest::Approx(1.0));
+  }
+
+  // A path from boundary to boundary splits the grid in two pieces, each a disk.
+  std::vector<int> across;
+  for (int j = 0; j < 6; ++j) across.push_back(j * 8 + 3);
+  MatrixXd Vcut;
+  MatrixXi Fcut;
+  VectorXi origin;
+  REQUIRE(Eigen::cutMeshAlongPath(V, F, across, Vcut, Fcut, origin));
+  CHECK(Vcut.rows() == V.rows() + 6);
+  CHECK(eulerCharacteristic(Fcut) == 2);
+  const auto loops = Eigen::boundaryLoops(Fcut);
+  REQUIRE(loops.size() == 2);
+  CHECK(loops[0].size() + loops[1].size() == loopBefore + 2 * 5);
+}
+
+TEST_CASE("cutMesh: a tree of edges cuts an icosphere into a disk") {
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::icosphereMesh(2, V, F);
+  const int root = 0;
+  // Shortest paths from one root share its Dijkstra tree, so their union is a tree.
+  std::set<std::pair<int, int>> treeEdges;
+  std::set<int> treeVertices{root};
+  for (int target : {41, 97, 130, 11, 75}) {
+    const std::vector<int> path = Eigen::shortestEdgePath(V, F, root, target);
+    REQUIRE(path.size() >= 2);
+    for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+      treeEdges.insert({std::min(path[i], path[i + 1]), std::max(path[i], path[i + 1])});
+      treeVertices.insert(path[i + 1]);
+    }
+  }
+  REQUIRE(treeEdges.size() + 1 == treeVertices.size()); // a tree
+  std::vector<std::array<int, 2>> cut;
+  for (const auto& e : treeEdges) cut.push_back({e.second, e.first});
+
+  MatrixXd Vcut;
+  MatrixXi Fcut;
+  VectorXi origin;
+  std::string error;
+  REQUIRE(Eigen::cutMesh(V, F, cut, Vcut, Fcut, origin, &error));
+  checkCutCorrespondence(V, F, Vcut, Fcut, origin);
+  checkCutEdgesOpened(F, Fcut, origin, cut);
+  // A vertex with k tree edges gets k - 1 copies: sum (k - 1) = 2E - (E + 1) = E - 1.
+  CHECK(Vcut.rows() == V.rows() + Index(treeEdges.size()) - 1);
+  CHECK(eulerCharacteristic(F) == 2);
+  CHECK(eulerCharacteristic(Fcut) == 1);
+  const auto loops = Eigen::boundaryLoops(Fcut);
+  REQUIRE(loops.size() == 1);
+  CHECK(loops[0].size() == 2 * treeEdges.size());
+  checkLoopIsBoundary(Fcut, loops[0]);
+}
+
+TEST_CASE("cutMesh: repeated cuts compose") {
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::gridMesh(8, 8, V, F);
+  std::vector<int> first{3, 11, 19, 27}; // from the bottom boundary up column 3
+  MatrixXd V1, V2, V3;
+  MatrixXi F1, F2, F3;
+  VectorXi origin1, origin2, origin3;
+  REQUIRE(Eigen::cutMeshAlongPath(V, F, first, V1, F1, origin1));
+  // Second cut on the cut mesh: from the left boundary (vertex 8*4) to the right along row 4.
+  const std::vector<int> second = Eigen::shortestEdgePath(V1, F1, 4 * 8, 4 * 8 + 5, false);
+  REQUIRE(second.size() == 6);
+  REQUIRE(Eigen::cutMeshAlongPath(V1, F1, second, V2, F2, origin2));
+  CHECK(V2.rows() == V1.rows() + 5);
+  checkCutCorrespondence(V1, F1, V2, F2, origin2);
+  for (Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) CHECK(origin1[origin2[F2(f, k)]] == F(f, k));
+  CHECK(eulerCharacteristic(F2) == 1);
+  REQUIRE(Eigen::boundaryLoops(F2).size() == 1);
+  CHECK(Eigen::boundaryLoops(F2)[0].size() == 28 + 2 * 3 + 2 * 5);
+
+  // Cutting along edges that are already boundary changes nothing.
+  REQUIRE(Eigen::cutMeshAlongPath(V2, F2, second, V3, F3, origin3));
+  CHECK(V3.rows() == V2.rows());
+  CHECK(F3 == F2);
+
+  // An empty cut is the identity.
+  REQUIRE(Eigen::cutMesh(V, F, {}, V3, F3, origin3));
+  CHECK(V3 == V);
+  CHECK(F3 == F);
+  CHECK(origin3 == VectorXi::LinSpaced(V.rows(), 0, int(V.rows()) - 1));
+}
+
+TEST_CASE("cutMesh: bad input gives false, a message, and untouched outputs") {
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::gridMesh(4, 4, V, F);
+  MatrixXd Vcut = MatrixXd::Constant(2, 2, 7.0);
+  MatrixXi Fcut = MatrixXi::Constant(1, 3, 7);
+  VectorXi origin = VectorXi::Constant(3, 7);
+  auto untouched = [&] {
+    CHECK(Vcut == MatrixXd::Constant(2, 2, 7.0));
+    CHECK(Fcut == MatrixXi::Constant(1, 3, 7));
+    CHECK(origin == VectorXi::Constant(3, 7));
+  };
+  std::string error;
+  CHECK_FALSE(Eigen::cutMesh(V, F, {{0, 5}, {0, 10}}, Vcut, Fcut, origin, &error)); // 0-10 is no edge
+  CHECK(error.find("cut edge 1 (0, 10) is not an edge") != std::string::npos);
+  untouched();
+  CHECK_FALSE(Eigen::cutMesh(V, F, {{0, 16}}, Vcut, Fcut, origin, &error));
+  CHECK(error.find("outside [0, 16)") != std::string::npos);
+  untouched();
+  CHECK_FALSE(Eigen::cutMesh(V, F, {{3, 3}}, Vcut, Fcut, origin, &error));
+  CHECK(error.find("not an edge") != std::string::npos);
+  untouched();
+  CHECK_FALSE(Eigen::cutMeshAlongPath(V, F, {0, 1, 6, 8}, Vcut, Fcut, origin, &error)); // 6 -> 8 is no edge
+  CHECK(error.find("path step 2 (6, 8)") != std::string::npos);
+  untouched();
+  CHECK_FALSE(Eigen::cutMeshAlongPath(V, F, {-2}, Vcut, Fcut, origin, &error));
+  CHECK(!error.empty());
+  untouched();
+  MatrixXi badF = F;
+  badF(3, 1) = 99;
+  CHECK_FALSE(Eigen::cutMesh(V, badF, {}, Vcut, Fcut, origin, &error));
+  CHECK(error.find("face 3") != std::string::npos);
+  untouched();
+  // Without an error string it still fails cleanly.
+  CHECK_FALSE(Eigen::cutMesh(V, F, {{0, 10}}, Vcut, Fcut, origin));
+  untouched();
+}
