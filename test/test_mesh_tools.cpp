@@ -442,3 +442,66 @@ TEST_CASE("cutMesh: bad input gives false, a message, and untouched outputs") {
   CHECK_FALSE(Eigen::cutMesh(V, F, {{0, 10}}, Vcut, Fcut, origin));
   untouched();
 }
+
+TEST_CASE("massMatrix: hand-computed triangles, total area, positive diagonal") {
+  // Right isosceles triangle (right angle at 0, not obtuse): Voronoi shares 1/4, 1/8, 1/8.
+  MatrixXd V(3, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  MatrixXi F(1, 3);
+  F << 0, 1, 2;
+  Eigen::SparseMatrix<double> M = Eigen::massMatrix(V, F);
+  CHECK(M.nonZeros() == 3);
+  CHECK(M.coeff(0, 0) == doctest::Approx(0.25));
+  CHECK(M.coeff(1, 1) == doctest::Approx(0.125));
+  CHECK(M.coeff(2, 2) == doctest::Approx(0.125));
+  // Obtuse at vertex 0 (135 degrees), area 1/2: halves and quarters.
+  V.row(2) << -1, 1, 0;
+  M = Eigen::massMatrix(V, F);
+  CHECK(M.coeff(0, 0) == doctest::Approx(0.25));
+  CHECK(M.coeff(1, 1) == doctest::Approx(0.125));
+  CHECK(M.coeff(2, 2) == doctest::Approx(0.125));
+  // Equilateral triangle: a third of the area each; a degenerate one adds nothing.
+  V << 0, 0, 0, 1, 0, 0, 0.5, std::sqrt(0.75), 0;
+  MatrixXi F2(2, 3);
+  F2 << 0, 1, 2, 0, 1, 1;
+  M = Eigen::massMatrix(V, F2);
+  for (int i = 0; i < 3; ++i) CHECK(M.coeff(i, i) == doctest::Approx(std::sqrt(3.0) / 12));
+
+  // Regular grid: interior vertices own an h x h square (the Voronoi cell of the lattice).
+  Eigen::gridMesh(5, 5, V, F);
+  M = Eigen::massMatrix(V, F);
+  CHECK(M.sum() == doctest::Approx(1.0));
+  CHECK(M.coeff(2 * 5 + 2, 2 * 5 + 2) == doctest::Approx(1.0 / 16));
+  CHECK(M.nonZeros() == V.rows());
+
+  // Jittered grid (obtuse triangles appear) in 3-D and an icosphere: sum = total area, diagonal > 0.
+  std::mt19937 generator(3);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  Eigen::gridMesh(12, 9, V, F);
+  for (Index i = 0; i < V.rows(); ++i) V.row(i) += Eigen::RowVector3d(jitter(generator) / 11, jitter(generator) / 8, jitter(generator));
+  MatrixXd S;
+  MatrixXi G;
+  Eigen::icosphereMesh(3, S, G);
+  int obtuseCount = 0;
+  for (const auto& mesh : {std::make_pair(V, F), std::make_pair(S, G)}) {
+    double area = 0;
+    for (Index f = 0; f < mesh.second.rows(); ++f) {
+      const Eigen::RowVector3d a = mesh.first.row(mesh.second(f, 0)), b = mesh.first.row(mesh.second(f, 1)),
+                               c = mesh.first.row(mesh.second(f, 2));
+      area += 0.5 * (b - a).cross(c - a).norm();
+      obtuseCount += (b - a).dot(c - a) < 0 || (a - b).dot(c - b) < 0 || (a - c).dot(b - c) < 0;
+    }
+    M = Eigen::massMatrix(mesh.first, mesh.second);
+    CHECK(M.sum() == doctest::Approx(area).epsilon(1e-12));
+    for (Index i = 0; i < M.rows(); ++i) CHECK(M.coeff(i, i) > 0);
+    CHECK(M.nonZeros() == M.rows());
+  }
+  CHECK(obtuseCount > 10); // the obtuse branch was exercised
+  CHECK(S.rows() > 0);
+
+  // An unused vertex gets zero mass.
+  V.conservativeResize(V.rows() + 1, 3);
+  V.row(V.rows() - 1).setZero();
+  M = Eigen::massMatrix(V, F);
+  CHECK(M.coeff(V.rows() - 1, V.rows() - 1) == 0.0);
+}
