@@ -12,14 +12,23 @@ namespace Eigen {
 
 namespace internal {
 
-/** \internal Line reader over a zlib stream that skips blank lines and '#' comments.
+/** \internal Reader over a zlib stream (gzip or plain file) shared by the mesh readers: text
+  * lines that skip blank lines and '#' comments (OFF, OBJ, PLY headers), then optionally raw
+  * bytes (binary PLY bodies).
   *
-  * Lines of any length are supported; the reader keeps track of the current line number so that
-  * error messages can point at the offending line. */
+  * Lines of up to maxLineLength characters are supported (a longer one is a read error, so that a
+  * file without newlines cannot make the reader hold all of it as one string); the reader keeps
+  * track of the current line number, and of the byte offset in binary mode, so that error messages
+  * can point at the offending place. */
 class OffLineReader
 {
 public:
-  explicit OffLineReader(const std::string& path) : m_file(nullptr), m_line(0), m_openErrno(0)
+  /** Longest line accepted (64 MiB). */
+  static constexpr std::size_t maxLineLength = std::size_t(1) << 26;
+
+  explicit OffLineReader(const std::string& path)
+      : m_file(nullptr), m_line(0), m_openErrno(0), m_lineTooLong(false), m_binaryStart(-1), m_consumed(0),
+        m_bufferPosition(0)
   {
     errno = 0;
     m_file = gzopen(path.c_str(), "rb");
@@ -55,11 +64,50 @@ public:
   /** \returns a description of a zlib or system read error, or an empty string at a clean end of file. */
   std::string streamError() const
   {
+    if (m_lineTooLong) return "a line is longer than " + std::to_string(maxLineLength) + " characters";
     int code = Z_OK;
     const char* msg = gzerror(m_file, &code);
     if (code == Z_OK || code == Z_STREAM_END) return std::string();
     if (code == Z_ERRNO) return std::strerror(errno);
     return msg ? std::string(msg) : std::string("zlib error ") + std::to_string(code);
+  }
+
+  /** Reads the next \a count raw bytes into \a destination (binary mode: after the last line read,
+    * no further lines may be read). \returns false if the stream ends first or on a read error
+    * (then streamError() tells which). */
+  bool readBytes(void* destination, std::size_t count)
+  {
+    if (m_binaryStart < 0)
+    {
+      m_binaryStart = static_cast<long long>(gztell(m_file));
+      m_buffer.resize(std::size_t(1) << 16);
+      m_bufferEnd = m_bufferPosition = 0;
+    }
+    unsigned char* out = static_cast<unsigned char*>(destination);
+    while (count > 0)
+    {
+      if (m_bufferPosition == m_bufferEnd && !refill()) return false;
+      const std::size_t take = std::min(count, m_bufferEnd - m_bufferPosition);
+      std::memcpy(out, m_buffer.data() + m_bufferPosition, take);
+      out += take;
+      m_bufferPosition += take;
+      m_consumed += take;
+      count -= take;
+    }
+    return true;
+  }
+
+  /** \returns the byte offset in the (uncompressed) file of the next byte readBytes() returns. */
+  long long byteOffset() const { return (m_binaryStart < 0 ? 0 : m_binaryStart) + static_cast<long long>(m_consumed); }
+
+  /** \returns whether any byte is left after those read by readBytes(). */
+  bool hasMoreBytes()
+  {
+    unsigned char probe;
+    if (!readBytes(&probe, 1)) return false;
+    --m_bufferPosition;
+    --m_consumed;
+    return true;
   }
 
 private:
@@ -73,14 +121,34 @@ private:
       gotAny = true;
       line += buffer;
       if (!line.empty() && line.back() == '\n') break;
+      if (line.size() > maxLineLength)
+      {
+        m_lineTooLong = true;
+        ++m_line;
+        return false;
+      }
     }
     if (gotAny) ++m_line;
     return gotAny;
   }
 
+  bool refill()
+  {
+    const int got = gzread(m_file, m_buffer.data(), unsigned(m_buffer.size()));
+    if (got <= 0) return false;
+    m_bufferPosition = 0;
+    m_bufferEnd = std::size_t(got);
+    return true;
+  }
+
   gzFile m_file;
   long m_line;
   int m_openErrno;
+  bool m_lineTooLong;
+  long long m_binaryStart;        // uncompressed offset where binary reading began, -1 before
+  std::size_t m_consumed;         // bytes returned by readBytes()
+  std::vector<unsigned char> m_buffer;
+  std::size_t m_bufferPosition, m_bufferEnd = 0;
 };
 
 /** \internal Parses a non-negative decimal integer token at \a p; advances \a p past it.
@@ -114,6 +182,32 @@ inline bool offOnlySpaceLeft(const char* p)
 {
   while (*p && std::isspace(static_cast<unsigned char>(*p))) ++p;
   return *p == '\0';
+}
+
+/** \internal Sets \a error (if not null) to "<who>: '<path>' <where>: <what>" (without
+  * " <where>" when it is empty) and \returns false: the message format of every mesh reader and
+  * writer. */
+inline bool meshFileFailure(std::string* error, const char* who, const std::string& path, const std::string& where,
+                            const std::string& what)
+{
+  if (error) *error = std::string(who) + ": '" + path + "'" + (where.empty() ? "" : " " + where) + ": " + what;
+  return false;
+}
+
+/** \internal The end of every mesh reader: checks that the stream ended cleanly and that the
+  * triangles fit into int, then copies the row-major \a coords and \a tris into V and F and clears
+  * \a error. \returns true, or what \a fail returns for the problem found. */
+template <typename Fail>
+bool meshReadFinish(const OffLineReader& reader, const std::vector<double>& coords, const std::vector<int>& tris,
+                    MatrixXd& V, MatrixXi& F, std::string* error, Fail fail)
+{
+  const std::string streamError = reader.streamError();
+  if (!streamError.empty()) return fail("read error after the last record (" + streamError + ")");
+  if (tris.size() / 3 > std::size_t(std::numeric_limits<int>::max())) return fail("too many triangles after triangulation");
+  V = Map<const Matrix<double, Dynamic, 3, RowMajor>>(coords.data(), Index(coords.size() / 3), 3);
+  F = Map<const Matrix<int, Dynamic, 3, RowMajor>>(tris.data(), Index(tris.size() / 3), 3);
+  if (error) error->clear();
+  return true;
 }
 
 } // namespace internal
@@ -250,20 +344,12 @@ inline bool readOFF(const std::string& path, Eigen::MatrixXd& V, Eigen::MatrixXi
     if (reader.nextDataLine(line))
       return fail("more data than the header declares (" + std::to_string(vertexCount) + " vertices, " +
                   std::to_string(faceCount) + " faces)");
-    const std::string streamError = reader.streamError();
-    if (!streamError.empty()) return fail("read error after the last face (" + streamError + ")");
-    if (tris.size() / 3 > std::size_t(std::numeric_limits<int>::max()))
-      return fail("too many triangles after triangulation");
-
-    V = Map<const Matrix<double, Dynamic, 3, RowMajor>>(coords.data(), Index(vertexCount), 3);
-    F = Map<const Matrix<int, Dynamic, 3, RowMajor>>(tris.data(), Index(tris.size() / 3), 3);
+    return internal::meshReadFinish(reader, coords, tris, V, F, error, fail);
   }
   catch (const std::bad_alloc&)
   {
     return fail("out of memory");
   }
-  if (error) error->clear();
-  return true;
 }
 
 } // namespace Eigen
