@@ -365,6 +365,17 @@ bool sameFactorBitwise(const SolverA& a, const SolverB& b) {
   return true;
 }
 
+/** A (both triangles stored) with the rows and columns of the removed dofs replaced by those of the identity. */
+template <typename Cfg>
+typename Cfg::FullMatrix withIdentityRows(const typename Cfg::FullMatrix& A, const std::vector<char>& removed) {
+  typename Cfg::FullMatrix B = A;
+  for (Index j = 0; j < B.outerSize(); ++j)
+    for (typename Cfg::FullMatrix::InnerIterator it(B, j); it; ++it)
+      if (removed[it.row()] || removed[it.col()])
+        it.valueRef() = it.row() == it.col() ? typename Cfg::Scalar(1) : typename Cfg::Scalar(0);
+  return B;
+}
+
 /** || La - Lb ||_F / ||Lb||_F for two factors with the same permutation. */
 template <typename Cfg, typename SolverA, typename SolverB>
 double factorDifference(const SolverA& a, const SolverB& b) {

@@ -27,17 +27,6 @@ struct GivenOrdering {
   }
 };
 
-/** A with the rows and columns of the removed dofs replaced by those of the identity. */
-template <typename Cfg>
-typename Cfg::FullMatrix withIdentityRows(const typename Cfg::FullMatrix& A, const std::vector<char>& removed) {
-  typename Cfg::FullMatrix B = A;
-  for (Index j = 0; j < B.outerSize(); ++j)
-    for (typename Cfg::FullMatrix::InnerIterator it(B, j); it; ++it)
-      if (removed[it.row()] || removed[it.col()])
-        it.valueRef() = it.row() == it.col() ? typename Cfg::Scalar(1) : typename Cfg::Scalar(0);
-  return B;
-}
-
 template <typename Cfg>
 typename Cfg::FullMatrix testLaplacian(unsigned seed) {
   typedef typename Cfg::Scalar Scalar;

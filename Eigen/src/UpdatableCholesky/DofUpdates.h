@@ -81,6 +81,16 @@ bool checkIndices(const Indices& indices, Index n, std::vector<StorageIndex>& ou
   return true;
 }
 
+/** \internal Marks supernode \a s and its ancestors up to the first marked one, appending them to \a dirty. */
+template <typename Scalar, typename StorageIndex>
+void markPathToRoot(const SupernodalFactor<Scalar, StorageIndex>& f, Index s, std::vector<char>& mark,
+                    std::vector<Index>& dirty) {
+  for (; s != -1 && !mark[s]; s = f.parent[s]) {
+    mark[s] = 1;
+    dirty.push_back(s);
+  }
+}
+
 /** \internal The dirty supernodes, increasing, for the changed permuted columns \a columns:
   * their supernodes, those of their neighbours earlier in the order (\a upper holds, for every
   * permuted column k, the rows i < k of C), and all ancestors. */
@@ -90,12 +100,7 @@ std::vector<Index> dirtySupernodes(const SupernodalFactor<Scalar, StorageIndex>&
                                    const std::vector<StorageIndex>& columns, UpdateWorkspace<Scalar>& ws) {
   std::vector<char>& mark = ws.mark;
   std::vector<Index> dirty;
-  auto markPath = [&](Index s) {
-    for (; s != -1 && !mark[s]; s = f.parent[s]) {
-      mark[s] = 1;
-      dirty.push_back(s);
-    }
-  };
+  auto markPath = [&](Index s) { markPathToRoot(f, s, mark, dirty); };
   for (StorageIndex k : columns) {
     markPath(f.colToSuper[k]);
     for (Index p = upper.ptr[k]; p < upper.ptr[k + 1]; ++p) markPath(f.colToSuper[upper.idx[p]]);

@@ -195,6 +195,14 @@ class SupernodalNumeric {
     return b;
   }
 
+  /** The factor's structure changed (dofs inserted or merged): the thread schedule is rebuilt
+    * by the next factorize(). */
+  void structureChanged() { m_schedule = SubtreeSchedule(); }
+
+  /** Declares the cache valid again after a failed refactorize() whose dirty supernodes (values
+    * and update matrices) were put back by the caller. */
+  void cacheRestored() { m_cacheValid = m_cacheUpdates; }
+
   /** Forgets the schedule and releases the workspace (after a new analysis). */
   void reset() {
     m_schedule = SubtreeSchedule();

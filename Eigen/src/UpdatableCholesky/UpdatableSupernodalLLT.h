@@ -199,6 +199,35 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   template <typename Indices>
   UpdatableSupernodalLLT& restoreDofs(const Indices& dofs);
 
+  /** Adds dofs that copy existing ones, as when a mesh is cut along a seam (paper §4.2,
+    * Algorithm 4), without a new analysis or ordering.
+    *
+    * \param matrix the new (n+m)×(n+m) matrix; its dofs 0..n-1 are the current ones.
+    * \param origin n+m indices as libigl's cut_mesh returns them: origin[i] == i for i < n, and
+    *        origin[n+j] in [0, n) is the dof that new dof n+j copies.
+    *
+    * Each new dof is eliminated right after its origin, in its origin's supernode; the
+    * supernodes on the paths from the changed columns to the roots get the copies' rows and are
+    * refactored (the others keep their values). Every entry of \a matrix must lie in the
+    * duplicated pattern: entry (i, j) needs origin[i] == origin[j] or an entry of the current
+    * pattern at (origin[i], origin[j]); otherwise info() is InvalidInput and nothing changes.
+    * Removed (Dirichlet) dofs stay removed; the new dofs are not removed. */
+  template <typename Indices>
+  UpdatableSupernodalLLT& insertDofs(const MatrixType& matrix, const Indices& origin);
+
+  /** Merges dofs into others, the reverse of insertDofs() (a cut undone): the merged dofs leave
+    * the numbering, the kept ones are renumbered in their order.
+    *
+    * \param matrix the new matrix on the kept dofs.
+    * \param origin n indices (n = current size): origin[i] == i keeps dof i, origin[i] == k != i
+    *        merges dof i into the kept dof k. The vector given to insertDofs() undoes that call.
+    *
+    * Every entry of \a matrix must lie in the merged pattern (an entry of the current pattern
+    * between dofs merged into its row and column) and in the factor's structure, which holds
+    * for copies made by insertDofs(); otherwise info() is InvalidInput and nothing changes. */
+  template <typename Indices>
+  UpdatableSupernodalLLT& mergeDofs(const MatrixType& matrix, const Indices& origin);
+
   /** \returns the removed dofs, in the order they were removed. */
   const std::vector<StorageIndex>& removedDofs() const { return m_removedList; }
 
@@ -326,6 +355,32 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   bool checkDofs(const Indices& dofs, bool removed, std::vector<StorageIndex>& list,
                  std::vector<StorageIndex>& permuted);
   void setRemovedFlags(const std::vector<StorageIndex>& list, char flag);
+  /** What insertDofs()/mergeDofs() hand to replaceDofs(), all in user numbering except where said. */
+  struct DofChange {
+    std::vector<StorageIndex> oldOfNew;   ///< new dof -> current dof, or -1 for a copy
+    std::vector<StorageIndex> newOfOld;   ///< current dof -> new dof, or -1 when merged away
+    std::vector<StorageIndex> preStart, preList;  ///< per new dof, the current dofs it stands for
+    std::vector<StorageIndex> newPerm;    ///< new dof -> new permuted position
+    std::vector<StorageIndex> touched;    ///< current dofs dirty in any case (origins, merged)
+    internal::updatable_cholesky::DofRelabeling<StorageIndex> relabel;
+    bool merging = false;
+  };
+  void replaceDofs(const MatrixType& matrix, DofChange& change);
+  /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty. */
+  void recordUpdate(UpdateRoute route, Index changedColumns, const std::vector<Index>& dirty, double flops,
+                    std::chrono::steady_clock::time_point start) {
+    UpdateStatistics& st = m_lastUpdate;
+    const bool all = route == UpdateRoute::Refactorization;
+    st.route = route;
+    st.changedColumns = changedColumns;
+    st.dirtySupernodes = all ? m_factor.count() : Index(dirty.size());
+    st.dirtyColumns = all ? m_n : 0;
+    if (!all)
+      for (Index s : dirty) st.dirtyColumns += m_factor.nodes[s].ncols;
+    st.flops = all ? m_totalFlops : flops;
+    st.flopFraction = m_totalFlops > 0 ? st.flops / m_totalFlops : 0;
+    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   template <typename Revert>
   void applyUpdate(const std::vector<StorageIndex>& permutedColumns, bool isRemoval, Revert&& revert);
 };
@@ -499,14 +554,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   if (route == UpdateRoute::LowRank) {  // cannot fail: removal keeps A positive definite
     const double flops = lowRankRemoval(m_factor, m_numeric.cache(), dirty, m_removedPermuted.data(), m_workspace);
     m_info = Success;
-    UpdateStatistics& st = m_lastUpdate;
-    st.route = route;
-    st.changedColumns = Index(permutedColumns.size());
-    st.dirtySupernodes = Index(dirty.size());
-    for (Index s : dirty) st.dirtyColumns += m_factor.nodes[s].ncols;
-    st.flops = flops;
-    st.flopFraction = totalFlops > 0 ? flops / totalFlops : 0;
-    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    recordUpdate(route, Index(permutedColumns.size()), dirty, flops, start);
     return;
   }
   auto run = [&]() {
@@ -525,18 +573,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   } else {
     m_info = Success;
   }
-  UpdateStatistics& st = m_lastUpdate;
-  st.route = route;
-  st.changedColumns = Index(permutedColumns.size());
-  st.dirtySupernodes = route == UpdateRoute::Refactorization ? m_factor.count() : Index(dirty.size());
-  st.dirtyColumns = 0;
-  if (route == UpdateRoute::Refactorization)
-    st.dirtyColumns = m_n;
-  else
-    for (Index s : dirty) st.dirtyColumns += m_factor.nodes[s].ncols;
-  st.flops = route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops;
-  st.flopFraction = totalFlops > 0 ? st.flops / totalFlops : 0;
-  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  recordUpdate(route, Index(permutedColumns.size()), dirty, dirtyFlops, start);
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
@@ -617,6 +654,283 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     m_removedList = previousList;
   });
   return *this;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Indices>
+UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::insertDofs(
+    const MatrixType& a, const Indices& origin) {
+  if (!beginUpdate()) return *this;
+  const Index n = m_n, total = Index(origin.size());
+  bool ok = a.rows() == a.cols() && a.rows() == total && total >= n;
+  for (Index i = 0; ok && i < total; ++i) {
+    const Index o = Index(origin[i]);
+    ok = i < n ? o == i : (o >= 0 && o < n);
+  }
+  if (!ok) {
+    m_info = InvalidInput;
+    return *this;
+  }
+  DofChange change;
+  change.oldOfNew.resize(total);
+  change.newOfOld.resize(n);
+  change.preStart.resize(total + 1);
+  change.preList.resize(total);
+  auto& relabel = change.relabel;
+  relabel.copies.assign(n, 0);
+  for (Index i = 0; i < total; ++i) {
+    const StorageIndex o = StorageIndex(origin[i]);
+    change.oldOfNew[i] = i < n ? o : StorageIndex(-1);
+    if (i < n) change.newOfOld[i] = o;
+    change.preStart[i] = StorageIndex(i);
+    change.preList[i] = o;  // a copy stands for its origin
+    if (i >= n) {
+      ++relabel.copies[m_P.indices()[o]];
+      change.touched.push_back(o);
+    }
+  }
+  change.preStart[total] = StorageIndex(total);
+  relabel.build(std::vector<char>(n, 0));
+  // each copy right after its origin, copies of one origin in increasing order
+  change.newPerm.resize(total);
+  std::vector<StorageIndex> placed(n, 0);
+  for (Index i = 0; i < total; ++i) {
+    const StorageIndex po = m_P.indices()[change.preList[i]];
+    change.newPerm[i] = i < n ? relabel.newPosition[po] : StorageIndex(relabel.newPosition[po] + 1 + placed[po]++);
+  }
+  replaceDofs(a, change);
+  return *this;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Indices>
+UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::mergeDofs(
+    const MatrixType& a, const Indices& origin) {
+  if (!beginUpdate()) return *this;
+  const Index n = m_n;
+  bool ok = Index(origin.size()) == n;
+  Index total = 0;
+  for (Index i = 0; ok && i < n; ++i) {
+    const Index o = Index(origin[i]);
+    ok = o >= 0 && o < n && (o == i || Index(origin[o]) == o);
+    total += o == i;
+  }
+  if (!ok || a.rows() != a.cols() || a.rows() != total) {
+    m_info = InvalidInput;
+    return *this;
+  }
+  DofChange change;
+  change.merging = true;
+  change.oldOfNew.resize(total);
+  change.newOfOld.assign(n, StorageIndex(-1));
+  std::vector<char> dropped(n, 0);
+  for (Index i = 0, next = 0; i < n; ++i) {
+    const Index o = Index(origin[i]);
+    if (o == i) {
+      change.newOfOld[i] = StorageIndex(next);
+      change.oldOfNew[next++] = StorageIndex(i);
+    } else {
+      dropped[m_P.indices()[i]] = 1;
+      change.touched.push_back(StorageIndex(i));
+      change.touched.push_back(StorageIndex(o));
+    }
+  }
+  // each kept dof stands for itself and the dofs merged into it
+  change.preStart.assign(total + 1, 0);
+  for (Index i = 0; i < n; ++i) ++change.preStart[change.newOfOld[Index(origin[i])] + 1];
+  for (Index x = 0; x < total; ++x) change.preStart[x + 1] += change.preStart[x];
+  change.preList.resize(n);
+  std::vector<StorageIndex> fill(change.preStart.begin(), change.preStart.end() - 1);
+  for (Index i = 0; i < n; ++i) change.preList[fill[change.newOfOld[Index(origin[i])]]++] = StorageIndex(i);
+  auto& relabel = change.relabel;
+  relabel.copies.assign(n, 0);
+  relabel.build(dropped);
+  change.newPerm.resize(total);
+  for (Index x = 0; x < total; ++x) change.newPerm[x] = relabel.newPosition[m_P.indices()[change.oldOfNew[x]]];
+  replaceDofs(a, change);
+  return *this;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const MatrixType& a, DofChange& change) {
+  using namespace internal::updatable_cholesky;
+  const auto start = std::chrono::steady_clock::now();
+  m_sparseLIsValid = false;
+  MatrixType copy;
+  const MatrixType* pa = compressedInput(a, copy);
+  const Index n = m_n, total = pa->rows();
+  const bool rowMajor = bool(MatrixType::IsRowMajor);
+  auto kept = [](Index row, Index col) { return UpLo_ == Lower ? row >= col : row <= col; };
+  const StorageIndex* outer = pa->outerIndexPtr();
+  const StorageIndex* inner = pa->innerIndexPtr();
+  const Scalar* values = pa->valuePtr();
+  const StorageIndex* perm = m_P.indices().data();
+
+  // 1. Compare with the current matrix (changed dofs) and check the pattern of the new entries.
+  auto foldAllowed = [&](Index x, Index y) {
+    for (Index p = change.preStart[x]; p < change.preStart[x + 1]; ++p)
+      for (Index q = change.preStart[y]; q < change.preStart[y + 1]; ++q) {
+        const Index u = change.preList[p], v = change.preList[q];
+        if (u == v || patternHolds(m_upper, perm[u], perm[v])) return true;
+      }
+    return false;
+  };
+  std::vector<char> changed(n, 0);
+  std::vector<Index> stamp(n, -1);  // >= 0: position of a current entry not yet matched; -2: matched
+  bool ok = true;
+  for (Index x = 0; x < total && ok; ++x) {
+    const Index ox = change.oldOfNew[x];
+    if (ox >= 0)
+      for (Index p = m_pattern.outer[ox]; p < m_pattern.outer[ox + 1]; ++p) {
+        const Index y = m_pattern.inner[p];
+        if (kept(rowMajor ? ox : y, rowMajor ? y : ox)) stamp[y] = p;
+      }
+    for (Index p = outer[x]; p < outer[x + 1]; ++p) {
+      const Index y = inner[p];
+      if (!kept(rowMajor ? x : y, rowMajor ? y : x)) continue;
+      const Index oy = change.oldOfNew[y];
+      if (ox >= 0 && oy >= 0 && stamp[oy] >= 0) {
+        if (!(values[p] == m_values[stamp[oy]])) changed[ox] = changed[oy] = 1;
+        stamp[oy] = -2;
+        continue;
+      }
+      if (x != y && !foldAllowed(x, y)) {
+        ok = false;
+        break;
+      }
+      if (ox >= 0) changed[ox] = 1;
+      if (oy >= 0) changed[oy] = 1;
+    }
+    if (ox >= 0)
+      for (Index p = m_pattern.outer[ox]; p < m_pattern.outer[ox + 1]; ++p) {
+        const Index y = m_pattern.inner[p];
+        if (stamp[y] >= 0) changed[ox] = changed[y] = 1;  // an entry that is gone
+        stamp[y] = -1;
+      }
+  }
+  for (Index o = 0; o < n && ok; ++o) {  // merged dofs: every entry of theirs is gone
+    if (change.newOfOld[o] >= 0) continue;
+    changed[o] = 1;
+    for (Index p = m_pattern.outer[o]; p < m_pattern.outer[o + 1]; ++p) changed[m_pattern.inner[p]] = 1;
+  }
+  // 2. A merge keeps the structure: it must hold every entry of the new matrix.
+  for (Index x = 0; x < total && ok && change.merging; ++x)
+    for (Index p = outer[x]; p < outer[x + 1] && ok; ++p) {
+      const Index y = inner[p];
+      if (x == y) continue;
+      const Index px = perm[change.oldOfNew[x]], py = perm[change.oldOfNew[y]];
+      ok = structureHolds(m_factor, (std::max)(px, py), (std::min)(px, py));
+    }
+  if (!ok) {
+    m_info = InvalidInput;
+    return;
+  }
+  // 3. Dirty supernodes: the paths from the changed columns, origins and merged dofs to the roots.
+  std::vector<char>& mark = m_workspace.mark;
+  std::vector<Index> dirty;
+  auto markPath = [&](Index s) { markPathToRoot(m_factor, s, mark, dirty); };
+  for (Index o = 0; o < n; ++o)
+    if (changed[o]) markPath(m_factor.colToSuper[perm[o]]);
+  for (StorageIndex o : change.touched) markPath(m_factor.colToSuper[perm[o]]);
+  if (change.merging)
+    for (Index s = 0; s < m_factor.count(); ++s) {
+      Index keptColumns = 0, droppedRows = 0;
+      const auto& node = m_factor.nodes[s];
+      for (Index k = 0; k < node.nrows(); ++k) {
+        const bool gone = change.relabel.newPosition[node.rows[k]] < 0;
+        droppedRows += gone;
+        keptColumns += k < node.ncols && !gone;
+      }
+      if (droppedRows > 0) markPath(s);
+      ok = ok && keptColumns > 0;  // a supernode may not lose all its columns
+    }
+  std::sort(dirty.begin(), dirty.end());
+  if (!ok) {
+    for (Index s : dirty) mark[s] = 0;
+    m_info = InvalidInput;
+    return;
+  }
+  Index changedCount = total - (n - Index(std::count(change.newOfOld.begin(), change.newOfOld.end(), StorageIndex(-1))));
+  for (Index o = 0; o < n; ++o) changedCount += changed[o] && change.newOfOld[o] >= 0;
+
+  // 4. The new structure and input; the previous ones kept aside for a revert.
+  FactorStructureBackup<Scalar, StorageIndex> backup;
+  relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
+  InputPattern<StorageIndex> oldPattern = std::move(m_pattern);
+  m_pattern = InputPattern<StorageIndex>();
+  m_pattern.assign(*pa);
+  std::vector<Scalar> oldValues(values, values + pa->nonZeros());
+  oldValues.swap(m_values);
+  CompressedPattern<StorageIndex> oldUpper = std::move(m_upper);
+  m_upper = CompressedPattern<StorageIndex>();
+  {
+    PermutedLowerEntries<StorageIndex> lower;
+    permuteTriangle<UpLo_>(*pa, change.newPerm, lower, &m_upper);
+    buildAssemblyMaps(lower, m_factor);
+  }
+  const PermutationType oldP = m_P;
+  m_P.resize(total);
+  for (Index i = 0; i < total; ++i) m_P.indices()[i] = change.newPerm[i];
+  m_Pinv = m_P.inverse();
+  std::vector<char> oldRemovedOriginal(total, 0), oldRemovedPermuted(total, 0);
+  oldRemovedOriginal.swap(m_removedOriginal);
+  oldRemovedPermuted.swap(m_removedPermuted);
+  std::vector<StorageIndex> oldRemovedList;
+  oldRemovedList.swap(m_removedList);
+  for (StorageIndex i : oldRemovedList) {
+    const StorageIndex x = change.newOfOld[i];
+    if (x < 0) continue;  // a removed dof merged away
+    m_removedList.push_back(x);
+    m_removedOriginal[x] = 1;
+    m_removedPermuted[change.newPerm[x]] = 1;
+  }
+  const Index oldN = m_n, oldMaxBelow = m_maxBelow;
+  const double oldTotalFlops = m_totalFlops;
+  m_n = total;
+  m_maxBelow = m_factor.maxBelow();
+  m_totalFlops = m_factor.flops();
+  m_numeric.structureChanged();
+
+  // 5. Refactor the dirty supernodes (or everything, when that is as cheap).
+  const double dirtyFlops = supernodeFlops(m_factor, dirty);
+  UpdateRoute route = UpdateRoute::PartialRefactorization;
+  if (m_route == UpdateRoute::Refactorization || !m_numeric.hasCachedUpdates() ||
+      dirtyFlops * threadCount() > 0.9 * m_totalFlops)
+    route = UpdateRoute::Refactorization;
+  auto run = [&]() {
+    m_numeric.setCacheUpdates(true);
+    return route == UpdateRoute::Refactorization ? m_numeric.factorize(m_factor, numericInput(), threadCount())
+                                                 : m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
+  };
+  const Index bad = run();
+  if (bad >= 0) {  // not positive definite: everything goes back as it was
+    m_failedColumn = m_Pinv.indices()[bad];
+    restoreFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
+    m_pattern = std::move(oldPattern);
+    m_values.swap(oldValues);
+    m_upper = std::move(oldUpper);
+    m_P = oldP;
+    m_Pinv = m_P.inverse();
+    m_removedOriginal.swap(oldRemovedOriginal);
+    m_removedPermuted.swap(oldRemovedPermuted);
+    m_removedList.swap(oldRemovedList);
+    m_n = oldN;
+    m_maxBelow = oldMaxBelow;
+    m_totalFlops = oldTotalFlops;
+    m_numeric.structureChanged();
+    if (route == UpdateRoute::PartialRefactorization) {
+      m_numeric.cacheRestored();
+    } else {
+      const Index again = m_numeric.factorize(m_factor, numericInput(), threadCount());
+      eigen_assert(again < 0 && "UpdatableSupernodalLLT: the previous factor could not be restored");
+      m_factorizationIsOk = again < 0;
+    }
+    m_info = NumericalIssue;
+  } else {
+    m_info = Success;
+  }
+  for (Index s : dirty) mark[s] = 0;
+  recordUpdate(route, changedCount, dirty, dirtyFlops, start);
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>

@@ -1,0 +1,185 @@
+// DofInsertion.h — symbolic edits of the supernodal factor when dofs are added or merged
+// (paper §4.2, Algorithm 4, and the example of eq. 17/18).
+//
+// insertDofs: a mesh cut duplicates vertices; each new dof copies an old one (its origin) and is
+// eliminated right after it. A copy and its origin behave like one vertex of the old graph
+// (indistinguishable nodes), so the old symbolic structure, with every origin row followed by the
+// rows of its copies, holds the factor of the new matrix. Only the supernodes on the paths from
+// the changed columns to the roots (the dirty ones) get the copies' rows; they are refactored
+// anyway. The clean ones keep their values: their columns have no entry at a copy, and neither
+// do their descendants', so their rows are only renumbered. Each copy becomes a column of its
+// origin's supernode.
+//
+// mergeDofs: the reverse. Merged dofs leave the numbering; their rows and columns leave the
+// supernodes (always dirty ones); their entries in the new matrix must be covered by the
+// remaining structure, which holds when the merged dofs are copies made by insertDofs.
+//
+// Everything here works in the permuted numbering of the factor. A relabeling maps each old
+// permuted column to its new position (or -1 when merged away) and says how many copies follow
+// it; the factor's previous row lists, values, relative positions and assembly maps are kept
+// aside (moved, not copied) so that a failed update can put them back.
+
+#ifndef EIGEN_UPDATABLE_CHOLESKY_DOF_INSERTION_H
+#define EIGEN_UPDATABLE_CHOLESKY_DOF_INSERTION_H
+
+#include <algorithm>
+#include <vector>
+
+namespace Eigen {
+namespace internal {
+namespace updatable_cholesky {
+
+/** \internal How the permuted columns move: old permuted column k goes to newPosition[k]
+  * (-1: merged away) and, in dirty supernodes, is followed by copies[k] new rows/columns. */
+template <typename StorageIndex>
+struct DofRelabeling {
+  std::vector<StorageIndex> newPosition;  ///< old permuted -> new permuted, or -1
+  std::vector<StorageIndex> copies;       ///< copies placed right after each old permuted column
+  std::vector<StorageIndex> oldPosition;  ///< new permuted -> old permuted, or -1 for a copy
+  Index newSize = 0;
+
+  /** Fills newPosition and oldPosition from copies and the dropped flags (both by old permuted column). */
+  void build(const std::vector<char>& dropped) {
+    const Index n = Index(copies.size());
+    newPosition.assign(n, StorageIndex(-1));
+    Index next = 0;
+    for (Index k = 0; k < n; ++k) {
+      if (dropped[k]) continue;
+      newPosition[k] = StorageIndex(next);
+      next += 1 + copies[k];
+    }
+    newSize = next;
+    oldPosition.assign(newSize, StorageIndex(-1));
+    for (Index k = 0; k < n; ++k)
+      if (newPosition[k] >= 0) oldPosition[newPosition[k]] = StorageIndex(k);
+  }
+};
+
+/** \internal The parts of the factor an insertion or merge changes, kept for a revert. */
+template <typename Scalar, typename StorageIndex>
+struct FactorStructureBackup {
+  Index n = 0;
+  std::vector<StorageIndex> colToSuper;
+  std::vector<Index> firstCol, ncols;
+  std::vector<std::vector<StorageIndex> > rows, parentPosition;  ///< dirty supernodes only
+  std::vector<std::vector<Index> > assemblySource, assemblyTarget;
+  std::vector<Matrix<Scalar, Dynamic, Dynamic> > values;          ///< dirty supernodes only
+  std::vector<std::vector<Scalar> > cache;                        ///< dirty supernodes only
+};
+
+/** \internal Applies \a relabel to the factor: dirty supernodes (mark != 0) get new row lists
+  * (merged rows dropped, copies inserted after their origins) and lose their values and cached
+  * update matrix (moved into \a backup, to be recomputed); clean ones are renumbered in place.
+  * Recomputes first columns, column counts, colToSuper and the relative positions of the
+  * children of dirty supernodes. The assembly maps are moved into \a backup (rebuild them). */
+template <typename Scalar, typename StorageIndex>
+void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::vector<Scalar> >& cache,
+                   const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
+                   FactorStructureBackup<Scalar, StorageIndex>& backup) {
+  const Index ns = f.count();
+  backup.n = f.n;
+  backup.colToSuper.swap(f.colToSuper);
+  backup.firstCol.resize(ns);
+  backup.ncols.resize(ns);
+  backup.rows.assign(ns, std::vector<StorageIndex>());
+  backup.parentPosition.assign(ns, std::vector<StorageIndex>());
+  backup.assemblySource.assign(ns, std::vector<Index>());
+  backup.assemblyTarget.assign(ns, std::vector<Index>());
+  backup.values.assign(ns, Matrix<Scalar, Dynamic, Dynamic>());
+  backup.cache.assign(ns, std::vector<Scalar>());
+  for (Index s = 0; s < ns; ++s) {
+    auto& node = f.nodes[s];
+    backup.firstCol[s] = node.firstCol;
+    backup.ncols[s] = node.ncols;
+    backup.assemblySource[s].swap(node.assemblySource);
+    backup.assemblyTarget[s].swap(node.assemblyTarget);
+    if (!mark[s]) {
+      for (auto& r : node.rows) r = relabel.newPosition[r];
+    } else {
+      backup.rows[s].swap(node.rows);
+      backup.values[s].swap(node.values);
+      if (Index(cache.size()) == ns) backup.cache[s].swap(cache[s]);
+      const auto& old = backup.rows[s];
+      Index columns = 0;
+      for (Index k = 0; k < Index(old.size()); ++k) {
+        const StorageIndex r = old[k], p = relabel.newPosition[r];
+        if (p < 0) continue;
+        const Index added = 1 + relabel.copies[r];
+        for (Index t = 0; t < added; ++t) node.rows.push_back(StorageIndex(p + t));
+        if (k < node.ncols) columns += added;
+      }
+      node.ncols = columns;
+    }
+    node.firstCol = node.ncols > 0 ? Index(node.rows[0]) : 0;
+  }
+  f.n = relabel.newSize;
+  f.colToSuper.assign(f.n, StorageIndex(-1));
+  for (Index s = 0; s < ns; ++s)
+    for (Index c = 0; c < f.nodes[s].ncols; ++c) f.colToSuper[f.nodes[s].firstCol + c] = StorageIndex(s);
+  // relative positions of the children of dirty supernodes (the parents' rows changed)
+  std::vector<StorageIndex> position(f.n, StorageIndex(-1));
+  for (Index p = 0; p < ns; ++p) {
+    if (!mark[p]) continue;
+    const auto& pn = f.nodes[p];
+    for (Index k = 0; k < pn.nrows(); ++k) position[pn.rows[k]] = StorageIndex(k);
+    for (Index c = f.firstChild[p]; c != -1; c = f.nextSibling[c]) {
+      auto& cn = f.nodes[c];
+      backup.parentPosition[c].swap(cn.parentPosition);
+      cn.parentPosition.resize(cn.below());
+      for (Index k = 0; k < cn.below(); ++k) cn.parentPosition[k] = position[cn.rows[cn.ncols + k]];
+    }
+  }
+}
+
+/** \internal Undoes relabelFactor(): puts back the structure, the assembly maps and the dirty
+  * supernodes' values and cached update matrices. */
+template <typename Scalar, typename StorageIndex>
+void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::vector<Scalar> >& cache,
+                   const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
+                   FactorStructureBackup<Scalar, StorageIndex>& backup) {
+  const Index ns = f.count();
+  for (Index s = 0; s < ns; ++s) {
+    auto& node = f.nodes[s];
+    node.firstCol = backup.firstCol[s];
+    node.ncols = backup.ncols[s];
+    node.assemblySource.swap(backup.assemblySource[s]);
+    node.assemblyTarget.swap(backup.assemblyTarget[s]);
+    if (!mark[s]) {
+      for (auto& r : node.rows) r = relabel.oldPosition[r];
+    } else {
+      node.rows.swap(backup.rows[s]);
+      node.values.swap(backup.values[s]);
+      if (Index(cache.size()) == ns) cache[s].swap(backup.cache[s]);
+    }
+  }
+  for (Index p = 0; p < ns; ++p) {
+    if (!mark[p]) continue;
+    for (Index c = f.firstChild[p]; c != -1; c = f.nextSibling[c]) f.nodes[c].parentPosition.swap(backup.parentPosition[c]);
+  }
+  f.n = backup.n;
+  f.colToSuper.swap(backup.colToSuper);
+}
+
+/** \internal True when permuted row \a row lies in the rows of the supernode of permuted column
+  * \a col (row > col): the structure then holds entry (row, col). */
+template <typename Scalar, typename StorageIndex>
+bool structureHolds(const SupernodalFactor<Scalar, StorageIndex>& f, Index row, Index col) {
+  const auto& rows = f.nodes[f.colToSuper[col]].rows;
+  return std::binary_search(rows.begin(), rows.end(), StorageIndex(row));
+}
+
+/** \internal True when C = P A P^T holds an entry at permuted (a, b), a != b, by its strict upper
+  * pattern \a upper (column max(a,b) lists the smaller neighbours). */
+template <typename StorageIndex>
+bool patternHolds(const CompressedPattern<StorageIndex>& upper, Index a, Index b) {
+  if (a < b) std::swap(a, b);
+  for (Index p = upper.ptr[a]; p < upper.ptr[a + 1]; ++p)
+    if (upper.idx[p] == b) return true;
+  return false;
+}
+
+}  // namespace updatable_cholesky
+}  // namespace internal
+}  // namespace Eigen
+
+#endif  // EIGEN_UPDATABLE_CHOLESKY_DOF_INSERTION_H

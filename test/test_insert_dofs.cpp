@@ -1,0 +1,323 @@
+// insertDofs / mergeDofs (paper §4.2, Algorithm 4): random sequences of vertex splits (the
+// matrix grows by copies of existing dofs, as when a mesh is cut), merges (a cut undone),
+// Dirichlet removals and restores and value changes, on weighted graph Laplacians and mesh
+// Laplacians. After every step the factor equals a fresh factorization of the current matrix
+// with the solver's own (extended) permutation, and it solves the current matrix. Bad input
+// (wrong sizes, an origin out of range or pointing at a new dof, entries outside the duplicated
+// pattern, a matrix that is not positive definite) leaves the object as it was.
+#include "test_checks.h"
+#include "test_config.h"
+#include "test_matrices.h"
+
+#include <unsupported/Eigen/MeshTools>
+
+#include <algorithm>
+#include <map>
+#include <random>
+
+namespace {
+using namespace uctest;
+
+/** A weighted graph whose Laplacian plus a positive margin per vertex is the test matrix
+  * (Hermitian positive definite by diagonal dominance). Splitting a vertex moves some of its
+  * edges to a new copy, which is what cutting a mesh does to its Laplacian's pattern. */
+template <typename Scalar>
+struct SplitGraph {
+  typedef typename Eigen::NumTraits<Scalar>::Real Real;
+  Index n = 0;
+  std::map<std::pair<Index, Index>, Scalar> edges;  ///< (i < j) -> weight of entry (j, i)
+  std::vector<Real> margin;
+
+  template <typename FullMatrix>
+  FullMatrix matrix() const {
+    typedef typename FullMatrix::StorageIndex StorageIndex;
+    std::vector<Eigen::Triplet<Scalar, StorageIndex>> t;
+    std::vector<Real> diag(margin);
+    for (const auto& e : edges) {
+      const Index i = e.first.first, j = e.first.second;
+      t.emplace_back(StorageIndex(j), StorageIndex(i), e.second);
+      t.emplace_back(StorageIndex(i), StorageIndex(j), Eigen::numext::conj(e.second));
+      diag[i] += std::abs(e.second);
+      diag[j] += std::abs(e.second);
+    }
+    for (Index i = 0; i < n; ++i) t.emplace_back(StorageIndex(i), StorageIndex(i), Scalar(diag[i]));
+    FullMatrix A(n, n);
+    A.setFromTriplets(t.begin(), t.end());
+    A.makeCompressed();
+    return A;
+  }
+
+  /** Splits the vertices \a origins: each gets a copy (n, n+1, ...) that takes a random half of
+    * its edges, and sometimes an edge to its origin. \returns the origin vector (cut_mesh's I). */
+  std::vector<int> split(const std::vector<int>& origins, std::mt19937& g) {
+    std::vector<int> origin(n + origins.size());
+    for (Index i = 0; i < n; ++i) origin[i] = int(i);
+    std::vector<Index> copyOf(n, -1);
+    for (std::size_t k = 0; k < origins.size(); ++k) {
+      copyOf[origins[k]] = n + Index(k);
+      origin[n + k] = origins[k];
+      margin.push_back(margin[origins[k]]);
+    }
+    std::map<std::pair<Index, Index>, Scalar> next;
+    for (const auto& e : edges) {
+      Index i = e.first.first, j = e.first.second;
+      if (copyOf[i] >= 0 && g() % 2) i = copyOf[i];
+      if (copyOf[j] >= 0 && g() % 2) j = copyOf[j];
+      next[std::make_pair((std::min)(i, j), (std::max)(i, j))] += e.second;
+    }
+    for (int o : origins)
+      if (g() % 2) next[std::make_pair(Index(o), copyOf[o])] = Scalar(0.5);
+    edges.swap(next);
+    n += Index(origins.size());
+    return origin;
+  }
+};
+
+template <typename Cfg>
+SplitGraph<typename Cfg::Scalar> graphOf(const typename Cfg::FullMatrix& A) {
+  SplitGraph<typename Cfg::Scalar> G;
+  G.n = A.rows();
+  G.margin.assign(G.n, typename Cfg::RealScalar(0.05));
+  for (Index j = 0; j < A.outerSize(); ++j)
+    for (typename Cfg::FullMatrix::InnerIterator it(A, j); it; ++it)
+      if (it.row() > j) G.edges[std::make_pair(j, Index(it.row()))] = it.value();
+  return G;
+}
+
+template <typename Cfg>
+double exactTolerance() {
+  return std::is_same<typename Cfg::RealScalar, double>::value ? 1e-14
+                                                                : 50 * double(Eigen::NumTraits<typename Cfg::RealScalar>::epsilon());
+}
+
+/** Checks the solver against a fresh simplicial factorization of P·current·Pᵀ in natural order
+  * (the solver's own permutation P, no new ordering or postorder), and a solve. */
+template <typename Cfg>
+void checkAgainstFresh(const typename Cfg::Solver& llt, const typename Cfg::FullMatrix& current, std::mt19937& g) {
+  typedef typename Cfg::FullMatrix FullMatrix;
+  REQUIRE(llt.rows() == current.rows());
+  FullMatrix C;
+  C = current.template selfadjointView<Eigen::Lower>().twistedBy(llt.permutationP());
+  Eigen::SimplicialLLT<FullMatrix, Eigen::Lower, Eigen::NaturalOrdering<typename Cfg::StorageIndex>> fresh(C);
+  REQUIRE(fresh.info() == Eigen::Success);
+  const FullMatrix L = llt.matrixL(), Lf = fresh.matrixL();
+  CHECK(double((L - Lf).norm() / Lf.norm()) <= exactTolerance<Cfg>());
+  const typename Cfg::Dense b = randomDense<Cfg>(current.rows(), 2, g);
+  const typename Cfg::Dense x = llt.solve(b);
+  CHECK(double((current * x - b).norm() / b.norm()) <= 100 * exactTolerance<Cfg>());
+}
+
+template <typename Cfg>
+typename Cfg::FullMatrix meshLaplacian(bool closed) {
+  typedef typename Cfg::Scalar Scalar;
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  if (closed)
+    Eigen::icosphereMesh(2, V, F);
+  else
+    Eigen::gridMesh(21, 17, V, F);
+  typename Cfg::FullMatrix A = Eigen::cotanLaplacian<Scalar, typename Cfg::StorageIndex>(V, F);
+  return A;
+}
+
+/** Random sequence of splits, merges (undo of the latest split), removals, restores and value
+  * changes, checking every step. */
+template <typename Cfg>
+void randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route, int steps, unsigned seed) {
+  typedef typename Cfg::FullMatrix FullMatrix;
+  std::mt19937 g(seed);
+  SplitGraph<typename Cfg::Scalar> G = graphOf<Cfg>(A0);
+  typename Cfg::Solver llt;
+  llt.setThreadCount(1);
+  llt.compute(toInput<Cfg>(G.template matrix<FullMatrix>()));
+  REQUIRE(llt.info() == Eigen::Success);
+  llt.setUpdateRoute(route);
+  std::vector<char> removed(G.n, 0);
+  struct Split {
+    SplitGraph<typename Cfg::Scalar> before;
+    std::vector<int> origin;
+  };
+  std::vector<Split> splits;
+  int inserts = 0, merges = 0;
+  for (int step = 0; step < steps; ++step) {
+    int op = int(g() % 6);
+    if (step + 1 == steps && merges == 0) op = splits.empty() ? 0 : 2;  // every run merges at least once
+    if (step + 2 == steps && splits.empty()) op = 0;
+    CAPTURE(step);
+    CAPTURE(op);
+    if (op <= 1) {  // split a few vertices
+      std::vector<int> origins;
+      const int count = 1 + int(g() % 6);
+      for (int k = 0; k < count; ++k) {
+        const int v = int(g() % G.n);
+        if (std::find(origins.begin(), origins.end(), v) == origins.end()) origins.push_back(v);
+      }
+      splits.push_back(Split{G, {}});
+      splits.back().origin = G.split(origins, g);
+      llt.insertDofs(toInput<Cfg>(G.template matrix<FullMatrix>()), splits.back().origin);
+      REQUIRE(llt.info() == Eigen::Success);
+      CHECK(llt.lastUpdate().changedColumns >= Index(origins.size()));
+      removed.resize(G.n, 0);
+      ++inserts;
+    } else if (op == 2 && !splits.empty()) {  // undo the latest split
+      const Split s = splits.back();
+      splits.pop_back();
+      G = s.before;
+      llt.mergeDofs(toInput<Cfg>(G.template matrix<FullMatrix>()), s.origin);
+      REQUIRE(llt.info() == Eigen::Success);
+      removed.resize(G.n);
+      ++merges;
+    } else if (op == 3) {  // Dirichlet removal of a few dofs
+      std::vector<int> dofs;
+      for (int k = 0; k < 4; ++k) {
+        const int v = int(g() % G.n);
+        if (!removed[v] && std::find(dofs.begin(), dofs.end(), v) == dofs.end()) dofs.push_back(v);
+      }
+      llt.removeDofs(dofs);
+      REQUIRE(llt.info() == Eigen::Success);
+      for (int v : dofs) removed[v] = 1;
+    } else if (op == 4) {  // restore all removed dofs
+      std::vector<int> dofs;
+      for (Index v = 0; v < G.n; ++v)
+        if (removed[v]) dofs.push_back(int(v));
+      llt.restoreDofs(dofs);
+      REQUIRE(llt.info() == Eigen::Success);
+      std::fill(removed.begin(), removed.end(), 0);
+    } else {  // new values in a few columns
+      std::vector<int> cols;
+      for (int k = 0; k < 3; ++k) {
+        const int v = int(g() % G.n);
+        if (std::find(cols.begin(), cols.end(), v) == cols.end()) cols.push_back(v);
+        G.margin[v] *= 1.5;
+      }
+      llt.updateColumns(toInput<Cfg>(G.template matrix<FullMatrix>()), cols);
+      REQUIRE(llt.info() == Eigen::Success);
+    }
+    const Eigen::UpdateStatistics& st = llt.lastUpdate();
+    CHECK(st.flopFraction >= 0);
+    CHECK(st.flopFraction <= 1.0 + 1e-12);
+    checkAgainstFresh<Cfg>(llt, withIdentityRows<Cfg>(G.template matrix<FullMatrix>(), removed), g);
+  }
+  CHECK(inserts > 0);
+  CHECK(merges > 0);
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("insertDofs/mergeDofs sequences match a fresh factorization", Cfg, UC_CORE_CONFIGS) {
+  const int steps = Cfg::isPrimary ? 60 : 20;
+  SUBCASE("grid Laplacian, partial refactorization") {
+    randomSequence<Cfg>(meshLaplacian<Cfg>(false), Eigen::UpdateRoute::PartialRefactorization, steps, 1);
+  }
+  SUBCASE("sphere Laplacian, automatic") {
+    randomSequence<Cfg>(meshLaplacian<Cfg>(true), Eigen::UpdateRoute::Automatic, steps, 2);
+  }
+  SUBCASE("random sparse matrix") {
+    std::mt19937 g(5);
+    const typename Cfg::FullMatrix A =
+        spdFromPattern<typename Cfg::Scalar, typename Cfg::StorageIndex>(randomPattern(250, 4.0, g), g);
+    randomSequence<Cfg>(A, Eigen::UpdateRoute::Automatic, steps, 3);
+  }
+  SUBCASE("full refactorization route") {
+    randomSequence<Cfg>(meshLaplacian<Cfg>(false), Eigen::UpdateRoute::Refactorization, steps / 3, 4);
+  }
+}
+
+TEST_CASE_TEMPLATE("insertDofs refactors only the dirty part", Cfg, uctest::d_int_col_lower_amd) {
+  typedef typename Cfg::FullMatrix FullMatrix;
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  Eigen::gridMesh(80, 80, V, F);
+  FullMatrix A = Eigen::cotanLaplacian<double, int>(V, F);
+  SplitGraph<double> G = graphOf<Cfg>(A);
+  typename Cfg::Solver llt;
+  llt.setUpdateCaching(true);  // (else the first update refactors once to build the cache)
+  llt.compute(toInput<Cfg>(G.template matrix<FullMatrix>()));
+  REQUIRE(llt.info() == Eigen::Success);
+  std::mt19937 g(3);
+  const std::vector<int> origin = G.split({3000, 3001, 3002}, g);
+  llt.insertDofs(toInput<Cfg>(G.template matrix<FullMatrix>()), origin);
+  REQUIRE(llt.info() == Eigen::Success);
+  const Eigen::UpdateStatistics& st = llt.lastUpdate();
+  CHECK(st.route == Eigen::UpdateRoute::PartialRefactorization);
+  CHECK(st.flopFraction < 0.8);
+  CHECK(st.dirtySupernodes < llt.supernodeCount() / 4);
+  CHECK(llt.rows() == A.rows() + 3);
+  // each copy is eliminated right after its origin
+  for (Index k = A.rows(); k < llt.rows(); ++k)
+    CHECK(llt.permutationP().indices()[k] > llt.permutationP().indices()[origin[k]]);
+  checkAgainstFresh<Cfg>(llt, G.template matrix<FullMatrix>(), g);
+}
+
+TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was", Cfg, UC_CORE_CONFIGS) {
+  typedef typename Cfg::FullMatrix FullMatrix;
+  typedef typename Cfg::Scalar Scalar;
+  std::mt19937 g(9);
+  SplitGraph<Scalar> G = graphOf<Cfg>(meshLaplacian<Cfg>(false));
+  const FullMatrix A = G.template matrix<FullMatrix>();
+  const Index n = A.rows();
+  typename Cfg::Solver llt(toInput<Cfg>(A));
+  REQUIRE(llt.info() == Eigen::Success);
+  auto unchanged = [&]() {
+    CHECK(llt.rows() == n);
+    checkAgainstFresh<Cfg>(llt, A, g);
+  };
+  SplitGraph<Scalar> H = G;
+  const std::vector<int> origin = H.split({10, 40, 41}, g);
+  const FullMatrix Acut = H.template matrix<FullMatrix>();
+  SUBCASE("origin of the wrong size, or a matrix of the wrong size") {
+    std::vector<int> shortOrigin(origin.begin(), origin.end() - 1);
+    llt.insertDofs(toInput<Cfg>(Acut), shortOrigin);
+    CHECK(llt.info() == Eigen::InvalidInput);
+    llt.insertDofs(toInput<Cfg>(A), origin);
+    CHECK(llt.info() == Eigen::InvalidInput);
+    unchanged();
+  }
+  SUBCASE("origin out of range, pointing at a new dof, or renumbering an old dof") {
+    for (Index k : {Index(-1), n, n + 1}) {
+      std::vector<int> bad = origin;
+      bad[n] = int(k);
+      llt.insertDofs(toInput<Cfg>(Acut), bad);
+      CHECK(llt.info() == Eigen::InvalidInput);
+    }
+    std::vector<int> bad = origin;
+    bad[5] = 6;
+    llt.insertDofs(toInput<Cfg>(Acut), bad);
+    CHECK(llt.info() == Eigen::InvalidInput);
+    unchanged();
+  }
+  SUBCASE("an entry outside the duplicated pattern") {
+    FullMatrix bad = Acut;
+    const Index far = n - 1;  // not a neighbour of dof 10 (the copy n's origin) in the grid
+    bad.coeffRef(far, n) = Scalar(-0.01);
+    bad.coeffRef(n, far) = Scalar(-0.01);
+    bad.makeCompressed();
+    llt.insertDofs(toInput<Cfg>(bad), origin);
+    CHECK(llt.info() == Eigen::InvalidInput);
+    unchanged();
+  }
+  SUBCASE("a matrix that is not positive definite") {
+    FullMatrix bad = Acut;
+    bad.coeffRef(n + 1, n + 1) = Scalar(-1);
+    llt.insertDofs(toInput<Cfg>(bad), origin);
+    CHECK(llt.info() == Eigen::NumericalIssue);
+    unchanged();
+    llt.insertDofs(toInput<Cfg>(Acut), origin);  // and it still updates
+    CHECK(llt.info() == Eigen::Success);
+    checkAgainstFresh<Cfg>(llt, Acut, g);
+  }
+  SUBCASE("bad merges") {
+    llt.insertDofs(toInput<Cfg>(Acut), origin);
+    REQUIRE(llt.info() == Eigen::Success);
+    std::vector<int> bad = origin;
+    bad[n] = int(n + 1);  // merged into a dof that is merged itself
+    llt.mergeDofs(toInput<Cfg>(A), bad);
+    CHECK(llt.info() == Eigen::InvalidInput);
+    llt.mergeDofs(toInput<Cfg>(Acut), origin);  // wrong size
+    CHECK(llt.info() == Eigen::InvalidInput);
+    checkAgainstFresh<Cfg>(llt, Acut, g);
+    llt.mergeDofs(toInput<Cfg>(A), origin);
+    CHECK(llt.info() == Eigen::Success);
+    unchanged();
+  }
+}
