@@ -24,6 +24,7 @@
 #include <Eigen/MetisSupport>
 #include <unsupported/Eigen/MeshTools>
 
+#include "BenchReport.h"
 #include "CholmodPeer.h"
 #include "FixedOrdering.h"
 #include "RowdelPeer.h"
@@ -60,6 +61,15 @@ using Ordering = bench::FixedOrdering<int>;
 using Permutation = Ordering::PermutationType;
 using OursLLT = Eigen::UpdatableSupernodalLLT<SpMat, Eigen::Lower, Ordering>;
 using Eigen::UpdateRoute;
+using bench::csvNumber;
+using bench::fmt;
+using bench::fmtCount;
+using bench::fmtFraction;
+using bench::fmtMs;
+using bench::fmtRatio;
+using bench::infinityNorm;
+using bench::meshStem;
+using bench::parseInt;
 
 /** Diagonal shift that makes the (singular) cotan Laplacian positive definite. */
 constexpr double kShift = 1e-8;
@@ -278,19 +288,6 @@ double dirichletBackwardError(const SpMat& A, double normA, const std::vector<ch
   return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
 
-/** \returns ||A||_inf (max absolute column sum of the symmetric A). */
-double infinityNorm(const SpMat& A)
-{
-  double norm = 0;
-  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
-  {
-    double sum = 0;
-    for (SpMat::InnerIterator it(A, j); it; ++it) sum += std::abs(it.value());
-    norm = std::max(norm, sum);
-  }
-  return norm;
-}
-
 // ---- command line -------------------------------------------------------------------------------
 
 struct Options
@@ -318,20 +315,6 @@ void printUsage()
          "  --csv-dir=DIR   write remove_dofs_<mesh>.csv (medians), _samples.csv and _setup.csv there;\n"
          "                  plot with bench/plot_remove_dofs.sh DIR\n"
          "  --smoke         tiny grid, l = 1,5, one seam: a quick correctness run for CI\n";
-}
-
-bool parseInt(const std::string& text, int& value)
-{
-  try
-  {
-    std::size_t used = 0;
-    value = std::stoi(text, &used);
-    return used == text.size();
-  }
-  catch (const std::exception&)
-  {
-    return false;
-  }
 }
 
 bool parseOptions(int argc, char** argv, Options& o)
@@ -396,65 +379,6 @@ bool parseOptions(int argc, char** argv, Options& o)
   }
   if (o.meshes.empty() && o.grid == 0) o.meshes.push_back(UC_BENCH_DEFAULT_MESH);
   return true;
-}
-
-// ---- output -------------------------------------------------------------------------------------
-
-std::string fmt(double v, int precision = 2)
-{
-  if (std::isnan(v)) return "-";
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", precision, v);
-  return buffer;
-}
-
-/** Times in ms with about three significant digits. */
-std::string fmtMs(double v)
-{
-  if (std::isnan(v)) return "-";
-  return fmt(v, v < 1 ? 3 : v < 10 ? 2 : v < 100 ? 1 : 0);
-}
-
-std::string fmtRatio(double a, double b)
-{
-  if (std::isnan(a) || std::isnan(b) || b == 0) return "-";
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.2fx", a / b);
-  return buffer;
-}
-
-std::string fmtFraction(double v)
-{
-  if (std::isnan(v)) return "-";
-  char buffer[64];
-  if (v < 0.001) std::snprintf(buffer, sizeof(buffer), "%.1e", v);
-  else std::snprintf(buffer, sizeof(buffer), "%.3f", v);
-  return buffer;
-}
-
-std::string fmtCount(double v)
-{
-  if (std::isnan(v)) return "-";
-  std::string digits = std::to_string(static_cast<long long>(std::llround(v)));
-  std::string out;
-  for (std::size_t i = 0; i < digits.size(); ++i)
-  {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-
-/** \returns "bunny" for ".../bunny.off.gz". */
-std::string meshStem(const std::string& path)
-{
-  std::string name = path.substr(path.find_last_of('/') + 1);
-  for (const char* suffix : {".gz", ".off", ".OFF"})
-  {
-    const std::string s = suffix;
-    if (name.size() > s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0) name.resize(name.size() - s.size());
-  }
-  return name;
 }
 
 // ---- one mesh -----------------------------------------------------------------------------------
@@ -846,15 +770,6 @@ private:
       m_summaryCsv << ',' << m.key << "_ms," << m.key << "_min_ms," << m.key << "_max_ms," << m.key << "_flop_fraction";
     m_summaryCsv << ",ours_auto_route,ours_restore_ms,ours_auto_update_ms" << std::endl;
     if (!m_samplesCsv || !m_summaryCsv || !setup) throw std::runtime_error("cannot write CSV files in " + m_options.csvDir);
-  }
-
-  static std::string csvNumber(double v)
-  {
-    if (std::isnan(v)) return "NaN";
-    std::ostringstream s;
-    s.precision(10);
-    s << v;
-    return s.str();
   }
 
   void writeSamples(int l, int seam, const std::vector<int>& vertices, int pieces, const std::vector<Sample>& samples)

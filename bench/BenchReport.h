@@ -1,0 +1,121 @@
+// BenchReport: the small helpers the seam benchmarks (bench_remove_dofs, bench_insert_dofs) share
+// for their command lines, tables and CSV files: number formatting, mesh names, integer parsing,
+// the infinity norm of a sparse matrix.
+
+#ifndef UPDATABLE_CHOLESKY_BENCH_BENCHREPORT_H
+#define UPDATABLE_CHOLESKY_BENCH_BENCHREPORT_H
+
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <sstream>
+#include <string>
+
+namespace bench {
+
+/** \returns \a v with \a precision decimals, "-" for NaN. */
+inline std::string fmt(double v, int precision = 2)
+{
+  if (std::isnan(v)) return "-";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", precision, v);
+  return buffer;
+}
+
+/** \returns a time in ms with about three significant digits. */
+inline std::string fmtMs(double v)
+{
+  if (std::isnan(v)) return "-";
+  return fmt(v, v < 1 ? 3 : v < 10 ? 2 : v < 100 ? 1 : 0);
+}
+
+/** \returns a / b as "0.42x", "-" when either is missing or b is 0. */
+inline std::string fmtRatio(double a, double b)
+{
+  if (std::isnan(a) || std::isnan(b) || b == 0) return "-";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.2fx", a / b);
+  return buffer;
+}
+
+/** \returns a fraction with three decimals, or in exponent form below 0.001. */
+inline std::string fmtFraction(double v)
+{
+  if (std::isnan(v)) return "-";
+  char buffer[64];
+  if (v < 0.001) std::snprintf(buffer, sizeof(buffer), "%.1e", v);
+  else std::snprintf(buffer, sizeof(buffer), "%.3f", v);
+  return buffer;
+}
+
+/** \returns a count with thousands separators ("692,138"). */
+inline std::string fmtCount(double v)
+{
+  if (std::isnan(v)) return "-";
+  std::string digits = std::to_string(static_cast<long long>(std::llround(v)));
+  std::string out;
+  for (std::size_t i = 0; i < digits.size(); ++i)
+  {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+/** \returns \a v for a CSV cell: 10 significant digits, "NaN" when missing. */
+inline std::string csvNumber(double v)
+{
+  if (std::isnan(v)) return "NaN";
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+/** \returns "bunny" for ".../bunny.off.gz". */
+inline std::string meshStem(const std::string& path)
+{
+  std::string name = path.substr(path.find_last_of('/') + 1);
+  for (const char* suffix : {".gz", ".off", ".OFF"})
+  {
+    const std::string s = suffix;
+    if (name.size() > s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0) name.resize(name.size() - s.size());
+  }
+  return name;
+}
+
+/** Parses a whole string as an int. \returns false (value unspecified) if it is not one. */
+inline bool parseInt(const std::string& text, int& value)
+{
+  try
+  {
+    std::size_t used = 0;
+    value = std::stoi(text, &used);
+    return used == text.size();
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
+}
+
+/** \returns ||A||_inf (max absolute column sum of a symmetric A stored in full). */
+template <typename SparseMatrixType>
+double infinityNorm(const SparseMatrixType& A)
+{
+  double norm = 0;
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+  {
+    double sum = 0;
+    for (typename SparseMatrixType::InnerIterator it(A, j); it; ++it) sum += std::abs(it.value());
+    norm = std::max(norm, sum);
+  }
+  return norm;
+}
+
+} // namespace bench
+
+#endif // UPDATABLE_CHOLESKY_BENCH_BENCHREPORT_H
