@@ -459,8 +459,16 @@ TEST_CASE("readers: fuzzed files never crash; success means a valid mesh, failur
           }
         }
       }
-      const bool gzip = round % 5 == 4;
-      const std::string path = writeFile(base.name + (gzip ? ".gz" : ""), bytes, gzip);
+      const bool gzip = round % 5 >= 3;
+      std::string path = writeFile(base.name + (gzip ? ".gz" : ""), bytes, gzip);
+      if (round % 5 == 4) { // damage the compressed stream itself (header, deflate data or CRC)
+        std::ifstream in(path, std::ios::binary);
+        std::string compressed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        in.close();
+        if (uniform(2)) compressed[uniform(compressed.size())] ^= char(1 + uniform(255));
+        else compressed.resize(uniform(compressed.size()));
+        path = writeFile(base.name + ".gz", compressed);
+      }
       MatrixXd V2;
       MatrixXi F2;
       std::string error;

@@ -505,3 +505,50 @@ TEST_CASE("massMatrix: hand-computed triangles, total area, positive diagonal") 
   M = Eigen::massMatrix(V, F);
   CHECK(M.coeff(V.rows() - 1, V.rows() - 1) == 0.0);
 }
+
+TEST_CASE("boundaryLoops and cutMesh on a real mesh (camelhead)") {
+  MatrixXd V;
+  MatrixXi F;
+  std::string error;
+  const bool ok = Eigen::readOFF(std::string(UC_TEST_DATA_DIR) + "/camelhead.off.gz", V, F, &error);
+  INFO(error);
+  REQUIRE(ok);
+  const auto loops = Eigen::boundaryLoops(F);
+  REQUIRE(!loops.empty());
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    total += loops[i].size();
+    if (i > 0) CHECK(loops[i].size() <= loops[i - 1].size());
+  }
+  CHECK(int(total) == boundaryEdgeCount(F)); // every boundary edge in exactly one loop
+  checkLoopIsBoundary(F, loops[0]);
+
+  // A hop-count path from the boundary into the interior, trimmed to start at its last boundary
+  // vertex, opens the longest loop by twice its length.
+  std::set<int> onBoundary;
+  for (const auto& loop : loops) onBoundary.insert(loop.begin(), loop.end());
+  const std::vector<int> hops = bfsDistances(F, int(V.rows()), loops[0][0]);
+  int target = -1;
+  for (int v = 0; v < int(V.rows()) && target < 0; ++v)
+    if (hops[v] == 25 && !onBoundary.count(v)) target = v;
+  REQUIRE(target >= 0);
+  std::vector<int> path = Eigen::shortestEdgePath(V, F, loops[0][0], target, false);
+  REQUIRE(path.size() == 26);
+  std::size_t lastOnBoundary = 0;
+  for (std::size_t i = 0; i < path.size(); ++i)
+    if (onBoundary.count(path[i])) lastOnBoundary = i;
+  path.erase(path.begin(), path.begin() + std::ptrdiff_t(lastOnBoundary));
+  REQUIRE(path.size() >= 2);
+  const bool onLongest = std::count(loops[0].begin(), loops[0].end(), path[0]) == 1;
+  MatrixXd Vcut;
+  MatrixXi Fcut;
+  VectorXi origin;
+  REQUIRE(Eigen::cutMeshAlongPath(V, F, path, Vcut, Fcut, origin, &error));
+  checkCutCorrespondence(V, F, Vcut, Fcut, origin);
+  checkCutEdgesOpened(F, Fcut, origin, pathEdges(path));
+  CHECK(Vcut.rows() == V.rows() + Index(path.size()) - 1);
+  CHECK(eulerCharacteristic(Fcut) == eulerCharacteristic(F));
+  const auto cutLoops = Eigen::boundaryLoops(Fcut);
+  REQUIRE(cutLoops.size() == loops.size());
+  if (onLongest) CHECK(cutLoops[0].size() == loops[0].size() + 2 * (path.size() - 1));
+}
