@@ -196,6 +196,25 @@ TEST_CASE("boundaryLoops: grid, icosphere, hole, separate pieces, bowtie") {
     checkLoopIsBoundary(bowtie, loop);
   }
 
+  // Two grids of 2 x 2 cells touching at one corner (vertex 8 of the first is vertex 0 of the
+  // second): each loop stays in its own fan at the shared vertex.
+  Eigen::gridMesh(3, 3, V1, F1);
+  MatrixXi corner(2 * F1.rows(), 3);
+  corner << F1, (F1.array() + 8).matrix();
+  loops = Eigen::boundaryLoops(corner);
+  REQUIRE(loops.size() == 2);
+  for (const auto& loop : loops) {
+    CHECK(loop.size() == 8);
+    checkLoopIsBoundary(corner, loop);
+  }
+
+  // Sparse huge indices cost nothing more than small ones.
+  MatrixXi far(1, 3);
+  far << 0, 1, 2000000000;
+  loops = Eigen::boundaryLoops(far);
+  REQUIRE(loops.size() == 1);
+  CHECK(loops[0] == std::vector<int>{0, 1, 2000000000});
+
   CHECK(Eigen::boundaryLoops(MatrixXi(0, 3)).empty());
   MatrixXi negative(1, 3);
   negative << 0, -1, 2;

@@ -51,34 +51,33 @@ inline int nextBoundarySideAround(const MatrixXi& F, const std::vector<int>& par
   *
   * \param F  #F x 3 triangles, 0-based vertex indices.
   * \returns the loops; empty if there is no boundary or F is not a valid #F x 3 index matrix
-  *          (negative indices, other than 3 columns).
+  *          (negative indices, other than 3 columns). Cost O(#F log #F).
   *
   * \sa cutMesh(), shortestEdgePath()
   */
 inline std::vector<std::vector<int>> boundaryLoops(const MatrixXi& F)
 {
   std::vector<std::vector<int>> loops;
-  if (F.rows() == 0 || F.cols() != 3 || F.minCoeff() < 0 || F.maxCoeff() == std::numeric_limits<int>::max())
+  if (F.rows() == 0 || F.cols() != 3 || F.minCoeff() < 0 || 3 * F.rows() > Index(std::numeric_limits<int>::max()))
     return loops;
-  const int n = F.maxCoeff() + 1;
 
   using internal::meshtools::nextBoundarySideAround;
   const std::vector<int> partner = internal::meshtools::sidePartners(F);
 
-  // The boundary sides leaving each vertex (as face*3+corner), and the corners per vertex (a
-  // bound on the turn around it).
-  std::vector<std::vector<int>> leaving(static_cast<std::size_t>(n));
-  std::vector<int> cornerCount(static_cast<std::size_t>(n), 0);
+  // The boundary sides (as face*3+corner) in face order, and as (start vertex, side) pairs sorted
+  // by vertex: the sides leaving a vertex are one range (no array over the index range of F).
   std::vector<int> boundarySides;
+  std::vector<std::pair<int, int>> leaving;
   for (int side = 0; side < int(partner.size()); ++side)
-  {
-    ++cornerCount[std::size_t(F(side / 3, side % 3))];
-    if (partner[std::size_t(side)] != -1) continue;
-    leaving[std::size_t(F(side / 3, side % 3))].push_back(side);
-    boundarySides.push_back(side);
-  }
+    if (partner[std::size_t(side)] == -1)
+    {
+      boundarySides.push_back(side);
+      leaving.emplace_back(F(side / 3, side % 3), side);
+    }
+  std::sort(leaving.begin(), leaving.end());
 
   std::vector<char> used(partner.size(), 0);
+  std::vector<int> candidates;
   for (int first : boundarySides)
   {
     if (used[std::size_t(first)]) continue;
@@ -92,15 +91,15 @@ inline std::vector<std::vector<int>> boundaryLoops(const MatrixXi& F)
       const int b = F(face, (corner + 1) % 3);
       if (b == start) break;
       // The unused boundary sides leaving b; with several (fans touching at b), turn around b.
-      std::vector<int>& candidates = leaving[std::size_t(b)];
-      candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
-                                      [&](int s) { return used[std::size_t(s)] != 0; }),
-                       candidates.end());
+      candidates.clear();
+      for (auto it = std::lower_bound(leaving.begin(), leaving.end(), std::make_pair(b, -1));
+           it != leaving.end() && it->first == b; ++it)
+        if (!used[std::size_t(it->second)]) candidates.push_back(it->second);
       if (candidates.empty()) side = -1;
       else if (candidates.size() == 1) side = candidates.front();
       else
       {
-        const int turned = nextBoundarySideAround(F, partner, face, corner, b, cornerCount[std::size_t(b)]);
+        const int turned = nextBoundarySideAround(F, partner, face, corner, b, int(F.rows()));
         side = (turned >= 0 && !used[std::size_t(turned)]) ? turned : candidates.front();
       }
     }
