@@ -4,6 +4,8 @@
 // with more than three corners are fan-triangulated. Every malformed input (unreadable or corrupt
 // file, bad header, missing or extra lines, indices out of range, non-finite coordinates) makes
 // the reader return false with a message naming the file and the line; it never aborts.
+// The line/byte reader, the message format and the final copy into V and F defined here are
+// shared by the OBJ and PLY readers (ReadOBJ.h, ReadPLY.h).
 
 #ifndef EIGEN_MESHTOOLS_READOFF_H
 #define EIGEN_MESHTOOLS_READOFF_H
