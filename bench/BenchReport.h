@@ -12,7 +12,9 @@
 #include <cstdio>
 #include <exception>
 #include <sstream>
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace bench {
 
@@ -114,6 +116,24 @@ double infinityNorm(const SparseMatrixType& A)
     norm = std::max(norm, sum);
   }
   return norm;
+}
+
+/** \returns ||A x - b||_inf on the rows outside B (inB[i] != 0 on B) over ||A||_inf ||x||_inf +
+  * ||b||_inf: the backward error of the Dirichlet system A_II x_I = b_I - A_IB g_B; infinity when x
+  * differs from g on the dofs \a seam of B. */
+template <typename SparseMatrixType>
+double dirichletBackwardError(const SparseMatrixType& A, double normA, const std::vector<char>& inB,
+                              const std::vector<int>& seam, const Eigen::VectorXd& x, const Eigen::VectorXd& b,
+                              const Eigen::VectorXd& g)
+{
+  for (int j : seam)
+    if (!(std::abs(x[j] - g[j]) <= 1e-14 * std::max(1.0, std::abs(g[j])))) return std::numeric_limits<double>::infinity();
+  const Eigen::VectorXd r = A * x - b;
+  double worst = 0;
+  for (Eigen::Index i = 0; i < r.size(); ++i)
+    if (!inB[std::size_t(i)]) worst = std::max(worst, std::abs(r[i]));
+  const double e = worst / (normA * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>());
+  return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
 
 } // namespace bench

@@ -130,6 +130,13 @@ public:
   /** \returns CHOLMOD's flop count (Common.modfl) summed over the last removeDofs(). */
   double updateFlops() const { return m_updateFlops; }
 
+  /** \returns the working factor (null before reset()), for further modifications (RowaddPeer.h). */
+  cholmod_factor* working() { return m_working; }
+  /** \returns the CHOLMOD workspace of the working factor; pass it to every call on working(). */
+  cholmod_common& common() { return m_common; }
+  /** \returns the position of dof \a d in the factor. */
+  int position(int d) const { return m_position[std::size_t(d)]; }
+
 private:
   void check(const char* what) const
   {

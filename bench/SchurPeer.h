@@ -92,7 +92,7 @@ public:
   ~SchurComplementDirichlet()
   {
     cholmod_common& c = m_chol.common();
-    for (cholmod_dense** d : {&m_x, &m_y, &m_e}) cholmod_free_dense(d, &c);
+    for (cholmod_dense** d : {&m_x, &m_y, &m_e, &m_c}) cholmod_free_dense(d, &c);
   }
   SchurComplementDirichlet(const SchurComplementDirichlet&) = delete;
   SchurComplementDirichlet& operator=(const SchurComplementDirichlet&) = delete;
@@ -101,69 +101,91 @@ public:
     * original numbering); \a b and \a g are n-vectors, only g's entries at \a dofs are read. */
   Eigen::VectorXd solve(const std::vector<int>& dofs, const Eigen::VectorXd& b, const Eigen::VectorXd& g)
   {
+    prepare(dofs);
+    const int m = int(dofs.size());
+    Eigen::VectorXd rhs = forward(b);
+    for (int j = 0; j < m; ++j) rhs[j] -= g[m_sortedDofs[std::size_t(j)]];
+    // y = S^{-1} rhs
+    int info = 0;
+    const int nrhs = 1;
+    if (m > 0)
+    {
+      dpotrf_("L", &m, m_S.data(), &m, &info);
+      if (info != 0) throw std::runtime_error("SchurComplementDirichlet: the Schur complement is not positive definite (dpotrf info " + std::to_string(info) + ")");
+      dpotrs_("L", &m, &nrhs, m_S.data(), &m, rhs.data(), &m, &info);
+      m_updateFlops += double(m) * m * m / 3 + 2.0 * m * m;
+    }
+    return backward(rhs);
+  }
+
+  /** The first part of solve(), for other uses of the same blocks (e.g. Sherman-Morrison-Woodbury
+    * with H = H_B): computes W = L^{-1} P H on the reach of \a dofs and S = W^T W, whose lower
+    * triangle schur() then holds, both in the order of sortedDofs(). Resets updateFlops(). */
+  void prepare(const std::vector<int>& dofs)
+  {
     const int m = int(dofs.size());
     m_updateFlops = 0;
     // Positions of the dofs in the factor, sorted (postorder: each subtree is a contiguous range).
-    std::vector<std::pair<int, double>> byPosition(static_cast<std::size_t>(m));
-    for (int j = 0; j < m; ++j)
-      byPosition[std::size_t(j)] = {m_position[std::size_t(dofs[std::size_t(j)])], g[dofs[std::size_t(j)]]};
+    std::vector<std::pair<int, int>> byPosition(static_cast<std::size_t>(m));
+    for (int j = 0; j < m; ++j) byPosition[std::size_t(j)] = {m_position[std::size_t(dofs[std::size_t(j)])], dofs[std::size_t(j)]};
     std::sort(byPosition.begin(), byPosition.end());
     std::vector<int> q(static_cast<std::size_t>(m));
-    Eigen::VectorXd gSorted(m);
+    m_sortedDofs.resize(std::size_t(m));
     for (int j = 0; j < m; ++j)
     {
       q[std::size_t(j)] = byPosition[std::size_t(j)].first;
-      gSorted[j] = byPosition[std::size_t(j)].second;
+      m_sortedDofs[std::size_t(j)] = byPosition[std::size_t(j)].second;
     }
 
     // The reach: every supernode on a path from a dof to the root, processed in increasing order.
-    std::vector<int> reach;
+    m_reach.clear();
     for (int j = 0; j < m; ++j)
       for (int s = m_colToSuper[std::size_t(q[std::size_t(j)])]; s != -1 && !m_reachMark[std::size_t(s)];
            s = m_parent[std::size_t(s)])
       {
         m_reachMark[std::size_t(s)] = 1;
-        reach.push_back(s);
+        m_reach.push_back(s);
       }
-    std::sort(reach.begin(), reach.end());
-    for (int s : reach) m_reachMark[std::size_t(s)] = 0;
+    std::sort(m_reach.begin(), m_reach.end());
+    for (int s : m_reach) m_reachMark[std::size_t(s)] = 0;
 
     // Per reach supernode: the slice [first, first+count) of the sorted dofs in its subtree and the
     // offset of its block Z_S = W_S^T (count x ncols, column-major) in one buffer.
     m_slot.assign(std::size_t(m_nsuper), -1);
-    std::vector<int> first(reach.size()), count(reach.size());
-    std::vector<std::size_t> offset(reach.size() + 1, 0);
-    for (std::size_t r = 0; r < reach.size(); ++r)
+    m_first.resize(m_reach.size());
+    m_count.resize(m_reach.size());
+    m_offset.assign(m_reach.size() + 1, 0);
+    for (std::size_t r = 0; r < m_reach.size(); ++r)
     {
-      const int s = reach[r];
+      const int s = m_reach[r];
       m_slot[std::size_t(s)] = int(r);
       const auto lo = std::lower_bound(q.begin(), q.end(), m_super[m_firstDescendant[std::size_t(s)]]);
       const auto hi = std::lower_bound(q.begin(), q.end(), m_super[s + 1]);
-      first[r] = int(lo - q.begin());
-      count[r] = int(hi - lo);
-      offset[r + 1] = offset[r] + std::size_t(count[r]) * std::size_t(ncols(s));
+      m_first[r] = int(lo - q.begin());
+      m_count[r] = int(hi - lo);
+      m_offset[r + 1] = m_offset[r] + std::size_t(m_count[r]) * std::size_t(ncols(s));
     }
-    m_z.assign(offset.back(), 0.0);
-    for (std::size_t r = 0; r < reach.size(); ++r) // unit entries: W(q_j, j) = e before the solve
+    m_z.assign(m_offset.back(), 0.0);
+    for (std::size_t r = 0; r < m_reach.size(); ++r) // unit entries: W(q_j, j) = e before the solve
     {
-      const int s = reach[r];
-      for (int j = first[r]; j < first[r] + count[r]; ++j)
+      const int s = m_reach[r];
+      for (int j = m_first[r]; j < m_first[r] + m_count[r]; ++j)
         if (q[std::size_t(j)] >= m_super[s])
-          m_z[offset[r] + std::size_t(q[std::size_t(j)] - m_super[s]) * std::size_t(count[r]) + std::size_t(j - first[r])] = 1.0;
+          m_z[m_offset[r] + std::size_t(q[std::size_t(j)] - m_super[s]) * std::size_t(m_count[r]) + std::size_t(j - m_first[r])] = 1.0;
     }
 
     // W = L^{-1} P H on the reach, and S = W^T W (lower triangle), supernode by supernode.
-    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, m);
+    m_S.setZero(m, m);
     const double one = 1.0, zero = 0.0;
-    for (std::size_t r = 0; r < reach.size(); ++r)
+    for (std::size_t r = 0; r < m_reach.size(); ++r)
     {
-      const int s = reach[r], k = count[r], nc = ncols(s), nr = nrows(s), nb = nr - nc;
-      double* z = m_z.data() + offset[r];
+      const int s = m_reach[r], k = m_count[r], nc = ncols(s), nr = nrows(s), nb = nr - nc;
+      double* z = m_z.data() + m_offset[r];
       const double* Lss = m_values + m_px[s];
       // Z_S <- Z_S L_SS^{-T}   (i.e. W_S <- L_SS^{-1} W_S)
       dtrsm_("R", "L", "T", "N", &k, &nc, &one, Lss, &nr, z, &k);
       // S(slice, slice) += Z_S Z_S^T
-      dsyrk_("L", "N", &k, &nc, &one, z, &k, &one, S.data() + first[r] + std::ptrdiff_t(first[r]) * m, &m);
+      dsyrk_("L", "N", &k, &nc, &one, z, &k, &one, m_S.data() + m_first[r] + std::ptrdiff_t(m_first[r]) * m, &m);
       m_updateFlops += double(k) * nc * nc + double(k) * k * nc;
       if (nb == 0) continue;
       // T = Z_S L_{below,S}^T  (k x nb): column i is what row i below S receives, negated
@@ -174,56 +196,69 @@ public:
       for (int i = 0; i < nb; ++i)
       {
         const int row = below[i], a = m_colToSuper[std::size_t(row)], ra = m_slot[std::size_t(a)];
-        double* dst = m_z.data() + offset[std::size_t(ra)] + std::size_t(row - m_super[a]) * std::size_t(count[std::size_t(ra)]) +
-                      std::size_t(first[r] - first[std::size_t(ra)]);
+        double* dst = m_z.data() + m_offset[std::size_t(ra)] + std::size_t(row - m_super[a]) * std::size_t(m_count[std::size_t(ra)]) +
+                      std::size_t(m_first[r] - m_first[std::size_t(ra)]);
         const double* src = m_t.data() + std::size_t(i) * std::size_t(k);
         for (int t = 0; t < k; ++t) dst[t] -= src[t];
       }
     }
+    m_reachSupernodes = int(m_reach.size());
+  }
 
-    // c = L^{-1} P b (full forward solve), rhs = W^T c - g
+  /** After prepare(): computes c = L^{-1} P b (kept for backward()) and \returns W^T c, that is
+    * H^T A^{-1} b, in the order of sortedDofs(). */
+  Eigen::VectorXd forward(const Eigen::VectorXd& b)
+  {
     cholmod_common& common = m_chol.common();
     cholmod_factor* L = m_chol.factor();
     cholmod_dense bView = denseView(const_cast<double*>(b.data()), m_n);
     solve2(CHOLMOD_P, L, &bView, &m_x);
-    cholmod_dense* c = nullptr;
-    solve2(CHOLMOD_L, L, m_x, &c);
-    double* cx = static_cast<double*>(c->x);
-    Eigen::VectorXd rhs = -gSorted;
+    if (m_c) cholmod_free_dense(&m_c, &common);
+    solve2(CHOLMOD_L, L, m_x, &m_c);
+    const double* cx = static_cast<const double*>(m_c->x);
+    Eigen::VectorXd result = Eigen::VectorXd::Zero(Eigen::Index(m_sortedDofs.size()));
     const int inc = 1;
-    for (std::size_t r = 0; r < reach.size(); ++r)
+    const double one = 1.0;
+    for (std::size_t r = 0; r < m_reach.size(); ++r)
     {
-      const int s = reach[r], k = count[r], nc = ncols(s);
-      dgemv_("N", &k, &nc, &one, m_z.data() + offset[r], &k, cx + m_super[s], &inc, &one, rhs.data() + first[r], &inc);
+      const int s = m_reach[r], k = m_count[r], nc = ncols(s);
+      dgemv_("N", &k, &nc, &one, m_z.data() + m_offset[r], &k, cx + m_super[s], &inc, &one, result.data() + m_first[r], &inc);
       m_updateFlops += 2.0 * k * nc;
     }
-    // y = S^{-1} rhs
-    int info = 0;
-    const int nrhs = 1;
-    if (m > 0)
+    return result;
+  }
+
+  /** After forward(): \returns x = A^{-1} (b - H y) = P^T L^{-T} (c - W y), \a y in the order of
+    * sortedDofs(). */
+  Eigen::VectorXd backward(const Eigen::VectorXd& y)
+  {
+    cholmod_common& common = m_chol.common();
+    cholmod_factor* L = m_chol.factor();
+    if (!m_c) throw std::logic_error("SchurComplementDirichlet: backward() before forward()");
+    double* cx = static_cast<double*>(m_c->x);
+    const double one = 1.0, minusOne = -1.0;
+    const int inc = 1;
+    for (std::size_t r = 0; r < m_reach.size(); ++r)
     {
-      dpotrf_("L", &m, S.data(), &m, &info);
-      if (info != 0) throw std::runtime_error("SchurComplementDirichlet: the Schur complement is not positive definite (dpotrf info " + std::to_string(info) + ")");
-      dpotrs_("L", &m, &nrhs, S.data(), &m, rhs.data(), &m, &info);
-      m_updateFlops += double(m) * m * m / 3 + 2.0 * m * m;
-    }
-    // u = c - W y on the reach, then x = P^T L^{-T} u
-    const double minusOne = -1.0;
-    for (std::size_t r = 0; r < reach.size(); ++r)
-    {
-      const int s = reach[r], k = count[r], nc = ncols(s);
-      dgemv_("T", &k, &nc, &minusOne, m_z.data() + offset[r], &k, rhs.data() + first[r], &inc, &one, cx + m_super[s], &inc);
+      const int s = m_reach[r], k = m_count[r], nc = ncols(s);
+      dgemv_("T", &k, &nc, &minusOne, m_z.data() + m_offset[r], &k, y.data() + m_first[r], &inc, &one, cx + m_super[s], &inc);
       m_updateFlops += 2.0 * k * nc;
     }
-    solve2(CHOLMOD_Lt, L, c, &m_x);
-    cholmod_free_dense(&c, &common);
+    solve2(CHOLMOD_Lt, L, m_c, &m_x);
+    cholmod_free_dense(&m_c, &common);
     cholmod_dense* x = nullptr;
     solve2(CHOLMOD_Pt, L, m_x, &x);
     Eigen::VectorXd result = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(x->x), m_n);
     cholmod_free_dense(&x, &common);
-    m_reachSupernodes = int(reach.size());
     return result;
   }
+
+  /** \returns the dofs of the last prepare() sorted by their position in the factor. */
+  const std::vector<int>& sortedDofs() const { return m_sortedDofs; }
+  /** \returns S = W^T W of the last prepare() (lower triangle; solve() overwrites it with its factor). */
+  Eigen::MatrixXd& schur() { return m_S; }
+  /** Adds \a flops to updateFlops() (for dense work a caller does on schur()). */
+  void addUpdateFlops(double flops) { m_updateFlops += flops; }
 
   /** \returns the dense flops of the last solve(), without its two full triangular solves. */
   double updateFlops() const { return m_updateFlops; }
@@ -264,10 +299,13 @@ private:
   const int *m_super = nullptr, *m_pi = nullptr, *m_px = nullptr, *m_rows = nullptr;
   const double* m_values = nullptr;
   std::vector<int> m_position, m_colToSuper, m_parent, m_firstDescendant, m_slot;
+  std::vector<int> m_sortedDofs, m_reach, m_first, m_count; ///< of the last prepare()
+  std::vector<std::size_t> m_offset;
+  Eigen::MatrixXd m_S;
   std::vector<char> m_reachMark;
   std::vector<double> m_z, m_t;
   double m_updateFlops = 0, m_factorFlops = 0;
-  cholmod_dense *m_x = nullptr, *m_y = nullptr, *m_e = nullptr;
+  cholmod_dense *m_x = nullptr, *m_y = nullptr, *m_e = nullptr, *m_c = nullptr;
 };
 
 } // namespace bench

@@ -62,6 +62,7 @@ using Permutation = Ordering::PermutationType;
 using OursLLT = Eigen::UpdatableSupernodalLLT<SpMat, Eigen::Lower, Ordering>;
 using Eigen::UpdateRoute;
 using bench::csvNumber;
+using bench::dirichletBackwardError;
 using bench::fmt;
 using bench::fmtCount;
 using bench::fmtFraction;
@@ -271,21 +272,6 @@ void extractReduced(const SpMat& A, const Permutation& perm, const std::vector<c
     const int i = perm.indices()[k];
     if (!inB[std::size_t(i)]) r.perm.push_back(r.reduced[std::size_t(i)]);
   }
-}
-
-/** \returns ||A x - b||_inf on the rows outside B over ||A||_inf ||x||_inf + ||b||_inf, or infinity
-  * when x differs from g on B. */
-double dirichletBackwardError(const SpMat& A, double normA, const std::vector<char>& inB, const std::vector<int>& seam,
-                              const Eigen::VectorXd& x, const Eigen::VectorXd& b, const Eigen::VectorXd& g)
-{
-  for (int j : seam)
-    if (!(std::abs(x[j] - g[j]) <= 1e-14 * std::max(1.0, std::abs(g[j])))) return std::numeric_limits<double>::infinity();
-  const Eigen::VectorXd r = A * x - b;
-  double worst = 0;
-  for (Eigen::Index i = 0; i < r.size(); ++i)
-    if (!inB[std::size_t(i)]) worst = std::max(worst, std::abs(r[i]));
-  const double e = worst / (normA * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>());
-  return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
 
 // ---- command line -------------------------------------------------------------------------------
