@@ -37,7 +37,7 @@ struct ArapConstraintEdit
   * step (the cotan Laplacian system with the constrained vertices as Dirichlet values); the
   * energy never increases from one iteration to the next.
   *
-  * compute() factors \f$ L + \epsilon I \f$ once (L the cotan Laplacian, \f$ \epsilon = 10^{-8}
+  * compute() factors \f$ L + \epsilon I \f$ once (L the cotan Laplacian, \f$ \epsilon = 10^{-10}
   * \f$ times its mean diagonal so that the unconstrained matrix is positive definite). Every edit
   * of the constraint set then removes or restores only the dofs whose status changed, in place
   * (UpdatableSupernodalLLT::removeDofs() / restoreDofs(): no refactorization); moving handles
@@ -231,7 +231,7 @@ bool ArapDeformation<Ordering_>::compute(const MatrixXd& V, const MatrixXi& F)
     else
       m_unused[std::size_t(v)] = 1;
   }
-  const double epsilon = 1e-8 * (used > 0 ? diagonalSum / double(used) : 1.0);
+  const double epsilon = 1e-10 * (used > 0 ? diagonalSum / double(used) : 1.0);
   SparseMatrixType identity(n, n);
   identity.setIdentity();
   const SparseMatrixType shifted = m_laplacian + epsilon * identity;
@@ -454,16 +454,16 @@ void ArapDeformation<Ordering_>::globalStep(const std::vector<Matrix3d>& rotatio
   // the error by about eps / lambda_min(L_II). The constrained rows carry no residual.
   const MatrixXd zero = MatrixXd::Zero(U.rows(), 3);
   double previous = std::numeric_limits<double>::infinity();
-  for (int step = 0; step < 50; ++step)
+  for (int step = 0; step < 20; ++step)
   {
     MatrixXd residual = rhs - m_laplacian * U;
     for (std::size_t v = 0; v < m_constrained.size(); ++v)
       if (m_constrained[v]) residual.row(Index(v)).setZero();
     const MatrixXd correction = m_solver.solveDirichlet(residual, zero);
     const double size = correction.norm();
-    if (!(size < previous)) break;  // stagnation at round-off
+    if (!(size < previous)) break;  // round-off level: the correction no longer shrinks
     U += correction;
-    if (size <= 4 * NumTraits<double>::epsilon() * U.norm()) break;
+    if (size <= 1e-14 * U.norm() || size > 0.5 * previous) break;  // converged, or stagnating at round-off
     previous = size;
   }
 }

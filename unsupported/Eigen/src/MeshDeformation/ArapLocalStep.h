@@ -30,15 +30,15 @@ inline void fitRotations(const MatrixXd& rest, const MatrixXd& deformed, const S
                          std::vector<Matrix3d>& rotations)
 {
   const Index n = rest.rows();
+  const Matrix3Xd p = rest.transpose(), q = deformed.transpose();  // contiguous positions
   std::vector<Matrix3d> covariance(std::size_t(n), Matrix3d::Zero());
   forEachSpoke(laplacian, [&](Index i, Index j, double w) {
-    covariance[std::size_t(i)].noalias() +=
-        w * (rest.row(i) - rest.row(j)).transpose() * (deformed.row(i) - deformed.row(j));
+    covariance[std::size_t(i)].noalias() += (w * (p.col(i) - p.col(j))) * (q.col(i) - q.col(j)).transpose();
   });
   rotations.resize(std::size_t(n));
   for (Index i = 0; i < n; ++i)
   {
-    JacobiSVD<Matrix3d> svd(covariance[std::size_t(i)], ComputeFullU | ComputeFullV);
+    JacobiSVD<Matrix3d, NoQRPreconditioner> svd(covariance[std::size_t(i)], ComputeFullU | ComputeFullV);
     Matrix3d u = svd.matrixU();
     Matrix3d rotation = svd.matrixV() * u.transpose();
     if (rotation.determinant() < 0)
