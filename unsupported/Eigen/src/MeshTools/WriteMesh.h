@@ -17,9 +17,11 @@ namespace meshtools {
 class MeshOutput
 {
 public:
-  MeshOutput(const std::string& path, bool compress) : m_file(nullptr), m_failed(false)
+  MeshOutput(const std::string& path, bool compress) : m_file(nullptr), m_failed(false), m_openErrno(0)
   {
+    errno = 0;
     m_file = gzopen(path.c_str(), compress ? "wb6" : "wbT");
+    m_openErrno = errno;
   }
   ~MeshOutput() { close(); }
   MeshOutput(const MeshOutput&) = delete;
@@ -27,6 +29,9 @@ public:
 
   /** \returns whether the file could be created. */
   bool isOpen() const { return m_file != nullptr; }
+
+  /** \returns why creating the file failed (system message, or "out of memory" without errno). */
+  std::string openError() const { return m_openErrno ? std::strerror(m_openErrno) : "out of memory"; }
 
   /** Appends \a count raw bytes. */
   void write(const void* bytes, std::size_t count)
@@ -66,6 +71,7 @@ private:
 
   gzFile m_file;
   bool m_failed;
+  int m_openErrno;
   std::string m_buffer;
 };
 
@@ -204,7 +210,7 @@ inline bool writeMesh(const std::string& path, const MatrixXd& V, const MatrixXi
   if (!checkTriangles(F, V.rows(), "F", &triangleError)) return fail(triangleError);
 
   MeshOutput out(path, compress);
-  if (!out.isOpen()) return fail(std::string("cannot create file (") + (errno ? std::strerror(errno) : "out of memory") + ")");
+  if (!out.isOpen()) return fail("cannot create file (" + out.openError() + ")");
   if (format == MeshFormat::OFF) writeOffBody(out, V, F);
   else if (format == MeshFormat::OBJ) writeObjBody(out, V, F);
   else writePlyBody(out, V, F, binary);
