@@ -89,6 +89,7 @@ std::string routeName(Eigen::UpdateRoute route)
   {
   case Eigen::UpdateRoute::Automatic: return "Automatic";
   case Eigen::UpdateRoute::PartialRefactorization: return "Partial";
+  case Eigen::UpdateRoute::LowRank: return "LowRank";
   case Eigen::UpdateRoute::Refactorization: return "Refactor";
   default: return "route" + std::to_string(int(route));
   }

@@ -1,5 +1,6 @@
 #!/bin/sh
 # plot_remove_dofs.sh: plots the CSV of bench_remove_dofs with gnuplot, one PNG per mesh.
+# With PLOT_PREFIX=insert_dofs (what plot_insert_dofs.sh sets) it plots bench_insert_dofs' CSV.
 #
 # Usage: bench/plot_remove_dofs.sh DIR [DIR...]
 #
@@ -13,12 +14,18 @@
 
 set -eu
 
+prefix="${PLOT_PREFIX:-remove_dofs}"
+case "$prefix" in
+  insert_dofs) heading="Adding dofs"; ylabel="update + solve [ms] (median)"; name="plot_insert_dofs.sh" ;;
+  *) heading="Removing dofs"; ylabel="update + Dirichlet solve [ms] (median)"; name="plot_remove_dofs.sh" ;;
+esac
+
 if ! command -v gnuplot >/dev/null 2>&1; then
-  echo "plot_remove_dofs.sh: gnuplot not found (Debian/Ubuntu: apt-get install gnuplot-nox)" >&2
+  echo "$name: gnuplot not found (Debian/Ubuntu: apt-get install gnuplot-nox)" >&2
   exit 1
 fi
 if [ "$#" -eq 0 ]; then
-  echo "usage: $0 DIR [DIR...]   (folders given to bench_remove_dofs --csv-dir)" >&2
+  echo "usage: $0 DIR [DIR...]   (folders given to bench_${prefix} --csv-dir)" >&2
   exit 1
 fi
 
@@ -31,7 +38,7 @@ fi
 
 found=0
 for dir in "$@"; do
-  for csv in "$dir"/remove_dofs_*.csv; do
+  for csv in "$dir"/"$prefix"_*.csv; do
     [ -f "$csv" ] || continue
     case "$csv" in *_samples.csv|*_setup.csv) continue ;; esac
     found=1
@@ -40,7 +47,7 @@ for dir in "$@"; do
       echo "skipping $csv: no data rows (yet)" >&2
       continue
     fi
-    mesh=$(basename "$csv" .csv | sed 's/^remove_dofs_//')
+    mesh=$(basename "$csv" .csv | sed "s/^${prefix}_//")
     setup="${csv%.csv}_setup.csv"
     vertices=""
     threads=""
@@ -49,7 +56,7 @@ for dir in "$@"; do
       threads=$(awk -F, '$2 == "threads" { printf "%d", $3 }' "$setup")
     fi
     methods=$(head -n 1 "$csv" | tr ',' '\n' | grep '_ms$' |
-              grep -v -e '_min_ms$' -e '_max_ms$' -e '^ours_restore_ms$' -e '_update_ms$' | sed 's/_ms$//')
+              grep -v -e '_min_ms$' -e '_max_ms$' -e '_call_ms$' -e '^ours_restore_ms$' -e '^ours_merge_ms$' -e '_setup_ms$' -e '_update_ms$' | sed 's/_ms$//')
 
     time_plot=""
     flop_plot=""
@@ -60,7 +67,7 @@ for dir in "$@"; do
       colour=$(echo "#9400d3 #009e73 #56b4e9 #e69f00 #a08000 #0072b2 #d7191c #000000 #808080 #f0027f" |
                cut -d ' ' -f "$(( (index - 1) % 10 + 1 ))")
       case "$m" in
-        ours_auto) style="lw 3 dt 1 pt 7 ps 1.2" ;;
+        ours_auto|ours_insert) style="lw 3 dt 1 pt 7 ps 1.2" ;;
         ours_*) style="lw 1.5 dt 2 pt 6" ;;
         *) style="lw 1.5 dt 1 pt 5" ;;
       esac
@@ -81,8 +88,8 @@ set autoscale xfix
 set offsets graph 0.03, graph 0.03, 0, 0
 set grid
 set xlabel 'seam length l [vertices]'
-set multiplot layout 1,2 title 'Removing dofs: $mesh${vertices:+ ($vertices vertices}${threads:+, $threads thread(s)}${vertices:+)}'
-set ylabel 'update + Dirichlet solve [ms] (median)'
+set multiplot layout 1,2 title '$heading: $mesh${vertices:+ ($vertices vertices}${threads:+, $threads thread(s)}${vertices:+)}'
+set ylabel '$ylabel'
 set key top left
 plot $time_plot
 set ylabel 'update flops / full factorization flops'
@@ -95,6 +102,6 @@ EOF
 done
 
 if [ "$found" -eq 0 ]; then
-  echo "plot_remove_dofs.sh: no remove_dofs_*.csv in $*" >&2
+  echo "$name: no ${prefix}_*.csv in $*" >&2
   exit 1
 fi
