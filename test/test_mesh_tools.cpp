@@ -571,3 +571,84 @@ TEST_CASE("boundaryLoops and cutMesh on a real mesh (camelhead)") {
   REQUIRE(cutLoops.size() == loops.size());
   if (onLongest) CHECK(cutLoops[0].size() == loops[0].size() + 2 * (path.size() - 1));
 }
+
+TEST_CASE("cutMesh: random cut sets against an independent wedge count") {
+  // Oracle: around each vertex v, the triangles at v linked across shared uncut edges (v, w) form
+  // the wedges; two corners of v get the same new index exactly when they lie in the same wedge.
+  std::mt19937 generator(5);
+  for (int trial = 0; trial < 40; ++trial) {
+    MatrixXd V;
+    MatrixXi F;
+    if (trial % 2) Eigen::icosphereMesh(1, V, F);
+    else Eigen::gridMesh(6, 5, V, F);
+    const auto use = edgeUse(F);
+    std::vector<std::array<int, 2>> cut;
+    std::set<std::pair<int, int>> cutSet;
+    std::bernoulli_distribution pick(0.05 + 0.05 * (trial % 5));
+    for (const auto& e : use)
+      if (pick(generator)) {
+        cut.push_back({e.first.second, e.first.first});
+        cutSet.insert(e.first);
+      }
+    MatrixXd Vcut;
+    MatrixXi Fcut;
+    Eigen::VectorXi origin;
+    REQUIRE(Eigen::cutMesh(V, F, cut, Vcut, Fcut, origin));
+    checkCutCorrespondence(V, F, Vcut, Fcut, origin);
+    // Numbering: the first corner of v (in face order) keeps v, copies are numbered in the order
+    // of their first corners.
+    std::vector<char> seen(Vcut.rows(), 0);
+    int nextCopy = int(V.rows());
+    for (Index f = 0; f < F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int i = Fcut(f, k);
+        if (seen[i]) continue;
+        seen[i] = 1;
+        if (i >= V.rows()) CHECK(i == nextCopy++);
+        else CHECK(i == F(f, k));
+      }
+    CHECK(nextCopy == Vcut.rows());
+
+    Index expectedVertices = V.rows();
+    for (int v = 0; v < int(V.rows()); ++v) {
+      std::vector<std::pair<int, int>> corners; // (face, corner) at v
+      for (int f = 0; f < int(F.rows()); ++f)
+        for (int k = 0; k < 3; ++k)
+          if (F(f, k) == v) corners.push_back({f, k});
+      std::vector<int> component(corners.size(), -1);
+      int components = 0;
+      for (std::size_t s = 0; s < corners.size(); ++s) {
+        if (component[s] >= 0) continue;
+        std::vector<std::size_t> stack{s};
+        component[s] = components;
+        while (!stack.empty()) {
+          const std::size_t a = stack.back();
+          stack.pop_back();
+          for (std::size_t b = 0; b < corners.size(); ++b) {
+            if (component[b] >= 0) continue;
+            // Faces a and b share an edge (v, w) that is not cut?
+            bool linked = false;
+            for (int ka = 0; ka < 3 && !linked; ++ka) {
+              const int w = F(corners[a].first, ka);
+              if (w == v) continue;
+              for (int kb = 0; kb < 3; ++kb)
+                if (F(corners[b].first, kb) == w && !cutSet.count({std::min(v, w), std::max(v, w)})) linked = true;
+            }
+            if (linked) {
+              component[b] = components;
+              stack.push_back(b);
+            }
+          }
+        }
+        ++components;
+      }
+      if (components > 0) expectedVertices += components - 1;
+      for (std::size_t a = 0; a < corners.size(); ++a)
+        for (std::size_t b = 0; b < corners.size(); ++b)
+          CHECK((Fcut(corners[a].first, corners[a].second) == Fcut(corners[b].first, corners[b].second)) ==
+                (component[a] == component[b]));
+    }
+    INFO("trial " << trial << ", " << cut.size() << " cut edges");
+    CHECK(Vcut.rows() == expectedVertices);
+  }
+}

@@ -65,8 +65,11 @@ inline int cornerOfVertex(const MatrixXi& F, int face, int v)
   * new vertex, appended after the old ones in the order of their first corner in F: n, n+1, ...
   * (n = V.rows()). So a vertex inside a cut path (two cut edges) gets one copy, the end of a cut
   * inside the surface (one cut edge) none, and a boundary vertex where a cut starts one: a cut
-  * from the boundary opens the mesh. Every cut edge becomes two boundary edges. Vertices whose
-  * fans were already separate (two fans touching only at the vertex) are split as well.
+  * from the boundary opens the mesh. A cut edge becomes two boundary edges as soon as one of its
+  * ends is split, which holds for every edge of a path of two or more edges and for every edge
+  * touching the boundary; a lone interior cut edge (no other cut edge at either end) opens
+  * nothing. Vertices whose fans were already separate (two fans touching only at the vertex) are
+  * split as well.
   *
   * Faces keep their order and orientation; Fcut(f, k) is v or a copy of v where F(f, k) == v.
   * Cut edges that are boundary edges already, or listed twice, change nothing more.
