@@ -187,3 +187,27 @@ TEST_CASE("renderMeshShaded: z-buffer keeps the nearer triangle, background stay
   CHECK_FALSE(Eigen::renderMeshShaded(V, F, path, Eigen::Matrix3d::Identity(), 100, {7}, &error));
   CHECK(error.find("highlighted") != std::string::npos);
 }
+
+TEST_CASE("renderMeshCheckerboard: the uv checkerboard on the surface")
+{
+  // A unit square facing the viewer whose uv are its xy coordinates: 2 x 2 checks.
+  Eigen::MatrixXd V(4, 3);
+  V << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
+  Eigen::MatrixXi F(2, 3);
+  F << 0, 1, 2, 0, 2, 3;
+  const Eigen::MatrixXd UV = V.leftCols(2);
+  const std::string path = "test_render_textured.png";
+  std::string error;
+  REQUIRE(Eigen::renderMeshCheckerboard(V, F, UV, path, Eigen::Matrix3d::Identity(), 100, 2, &error));
+  DecodedPng image;
+  REQUIRE(decodePng(path, image));
+  // uv (0.25, 0.75) and (0.75, 0.75) are in different squares, (0.25, 0.25) and (0.75, 0.75) in
+  // squares of the same colour. Pixel of uv (u, v): (4 + 92 u, 96 - 92 v).
+  auto at = [&](double u, double v) { return image.pixel(int(4 + 92 * u), int(96 - 92 * v)); };
+  CHECK(at(0.25, 0.75) != at(0.75, 0.75));
+  CHECK(at(0.25, 0.25) == at(0.75, 0.75));
+  CHECK(at(0.25, 0.25) != std::array<std::uint8_t, 3>{255, 255, 255});
+  std::remove(path.c_str());
+  CHECK_FALSE(Eigen::renderMeshCheckerboard(V, F, UV.topRows(3), path, Eigen::Matrix3d::Identity(), 100, 2, &error));
+  CHECK(error.find("UV") != std::string::npos);
+}

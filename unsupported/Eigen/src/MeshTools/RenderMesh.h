@@ -1,6 +1,7 @@
 // RenderMesh: small software renderers that write PNG pictures of meshes, for the tutorials, the
 // demo and visual checks of parameterizations: the uv layout filled with a checkerboard (flipped
-// triangles in red), and an orthographic, z-buffered, Lambert-shaded view of a 3-D mesh.
+// triangles in red), and an orthographic, z-buffered, Lambert-shaded view of a 3-D mesh, plain or
+// textured with the checkerboard of its uv coordinates.
 // Triangles are scan-converted by barycentric coordinates at pixel centres; edges are 1-pixel lines.
 
 #ifndef EIGEN_MESHTOOLS_RENDERMESH_H
@@ -149,7 +150,8 @@ inline std::string renderCheckInput(const MatrixXd& points, Index minColumns, co
   *
   * The layout is scaled uniformly to fit a \a size x \a size picture (u to the right, v up). Each
   * triangle is filled with a \a checks x \a checks checkerboard spanning the longer side of the
-  * layout's bounding box, its edges are drawn as thin dark lines, and a triangle whose uv orientation
+  * layout's bounding box, its edges are drawn as thin dark lines (on dense meshes, whose edges
+  * average less than 5 pixels on screen, only the boundary edges), and a triangle whose uv orientation
   * differs from the layout's overall orientation (the sign of the total signed area), or has zero
   * area, is filled in red: a flipped triangle.
   *
@@ -210,19 +212,97 @@ inline bool renderUVCheckerboard(const MatrixXd& UV, const MatrixXi& F, const st
       canvas.put(x, y, (parity & 1) ? dark : light);
     });
   }
-  // Edges after all fills, so that no fill covers them; flipped triangles get red edges too, so
-  // that a sliver stays visible.
+  // Edges after all fills, so that no fill covers them: boundary edges always, the others only
+  // when they are long enough on screen (mean >= 5 pixels) not to hide the checkerboard; flipped
+  // triangles get red edges, so that a sliver stays visible.
+  const std::vector<int> partner = internal::meshtools::sidePartners(F);
+  double pixelLength = 0;
+  for (Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      pixelLength += (frame(UV(F(f, c), 0), UV(F(f, c), 1)) - frame(UV(F(f, (c + 1) % 3), 0), UV(F(f, (c + 1) % 3), 1))).norm();
+  const bool drawInterior = F.rows() > 0 && pixelLength / double(3 * F.rows()) >= 5.0;
   for (Index f = 0; f < F.rows(); ++f)
   {
     const bool flipped = !(orientation * signedArea(f) > 0);
     for (int c = 0; c < 3; ++c)
     {
+      if (!flipped && !drawInterior && partner[std::size_t(3 * f + c)] != -1) continue;
       const int a = F(f, c), b = F(f, (c + 1) % 3);
       canvas.drawLine(frame(UV(a, 0), UV(a, 1)), frame(UV(b, 0), UV(b, 1)), flipped ? red : edge);
     }
   }
   return writePNG(path, size, size, canvas.rgb(), error);
 }
+
+namespace internal {
+namespace meshtools {
+
+/** \internal The renderer behind renderMeshShaded() and renderMeshCheckerboard(): with \a UV null
+  * the surface colour is uniform, otherwise a \a checks x \a checks checkerboard over the uv
+  * bounding box's longer side, interpolated per pixel. */
+inline bool renderShaded(const MatrixXd& V, const MatrixXi& F, const MatrixXd* UV, int checks, const std::string& path,
+                         const Matrix3d& rotation, int size, const std::vector<int>& highlightVertices,
+                         std::string* error)
+{
+  std::string problem = renderCheckInput(V, 3, F, size);
+  for (int v : highlightVertices)
+    if (problem.empty() && (v < 0 || v >= V.rows())) problem = "highlighted vertex " + std::to_string(v) + " out of range";
+  if (problem.empty() && !rotation.allFinite()) problem = "rotation must be finite";
+  if (problem.empty() && UV && (UV->rows() != V.rows() || UV->cols() < 2 || !UV->allFinite()))
+    problem = "UV must be #V x 2 and finite";
+  if (problem.empty() && checks < 1) problem = "checks must be >= 1";
+  if (!problem.empty())
+  {
+    if (error) *error = path + ": " + problem;
+    return false;
+  }
+  const MatrixXd P = V.leftCols(3) * rotation.transpose();
+  Canvas canvas(size);
+  const PictureFrame frame(P, size);
+  const double depthExtent = P.rows() ? P.col(2).maxCoeff() - P.col(2).minCoeff() : 1.0;
+  double squareSize = 1;
+  Vector2d uvOrigin(0, 0);
+  if (UV && UV->rows() > 0)
+  {
+    const double extent = (UV->leftCols(2).colwise().maxCoeff() - UV->leftCols(2).colwise().minCoeff()).maxCoeff();
+    squareSize = extent > 0 ? extent / checks : 1.0;
+    uvOrigin << UV->col(0).minCoeff(), UV->col(1).minCoeff();
+  }
+  for (Index f = 0; f < F.rows(); ++f)
+  {
+    const Vector3d a = P.row(F(f, 0)).transpose(), b = P.row(F(f, 1)).transpose(), c = P.row(F(f, 2)).transpose();
+    const Vector3d normal = (b - a).cross(c - a);
+    const double length = normal.norm();
+    if (!(length > 0)) continue;
+    const double brightness = 0.25 + 0.75 * std::abs(normal.z()) / length;
+    canvas.fillTriangle(frame(a.x(), a.y()), frame(b.x(), b.y()), frame(c.x(), c.y()),
+                        [&](int x, int y, double w0, double w1, double w2) {
+                          const double z = w0 * a.z() + w1 * b.z() + w2 * c.z();
+                          double& stored = canvas.depth(x, y);
+                          if (z <= stored) return;
+                          stored = z;
+                          Vector3d base(200, 205, 225);
+                          if (UV)
+                          {
+                            const Vector2d p = w0 * UV->row(F(f, 0)).head<2>().transpose() +
+                                               w1 * UV->row(F(f, 1)).head<2>().transpose() +
+                                               w2 * UV->row(F(f, 2)).head<2>().transpose() - uvOrigin;
+                            const long parity = long(std::floor(p.x() / squareSize)) + long(std::floor(p.y() / squareSize));
+                            base = (parity & 1) ? Vector3d(70, 110, 190) : Vector3d(240, 240, 240);
+                          }
+                          canvas.put(x, y, {std::uint8_t(std::lround(base[0] * brightness)),
+                                            std::uint8_t(std::lround(base[1] * brightness)),
+                                            std::uint8_t(std::lround(base[2] * brightness))});
+                        });
+  }
+  const double radius = std::max(1.5, size / 250.0);
+  for (int v : highlightVertices)
+    canvas.drawDot(frame(P(v, 0), P(v, 1)), radius, {220, 20, 20}, P(v, 2), 0.02 * depthExtent);
+  return writePNG(path, size, size, canvas.rgb(), error);
+}
+
+} // namespace meshtools
+} // namespace internal
 
 /** \ingroup MeshTools_Module
   * \brief Draws an orthographic, z-buffered, Lambert-shaded picture of a 3-D mesh and writes it as PNG.
@@ -242,50 +322,37 @@ inline bool renderUVCheckerboard(const MatrixXd& UV, const MatrixXi& F, const st
   * \param error              if not null, receives a message naming the file when something is wrong.
   * \returns true when the picture was written.
   *
-  * \sa renderUVCheckerboard(), writePNG()
+  * \sa renderMeshCheckerboard(), renderUVCheckerboard(), writePNG()
   */
 inline bool renderMeshShaded(const MatrixXd& V, const MatrixXi& F, const std::string& path,
                              const Matrix3d& rotation = Matrix3d::Identity(), int size = 800,
                              const std::vector<int>& highlightVertices = {}, std::string* error = nullptr)
 {
-  using internal::meshtools::Canvas;
-  std::string problem = internal::meshtools::renderCheckInput(V, 3, F, size);
-  for (int v : highlightVertices)
-    if (problem.empty() && (v < 0 || v >= V.rows())) problem = "highlighted vertex " + std::to_string(v) + " out of range";
-  if (problem.empty() && !rotation.allFinite()) problem = "rotation must be finite";
-  if (!problem.empty())
-  {
-    if (error) *error = path + ": " + problem;
-    return false;
-  }
-  const MatrixXd P = V.leftCols(3) * rotation.transpose();
-  Canvas canvas(size);
-  const internal::meshtools::PictureFrame frame(P, size);
-  const double depthExtent = P.rows() ? P.col(2).maxCoeff() - P.col(2).minCoeff() : 1.0;
+  return internal::meshtools::renderShaded(V, F, nullptr, 1, path, rotation, size, highlightVertices, error);
+}
 
-  for (Index f = 0; f < F.rows(); ++f)
-  {
-    const Vector3d a = P.row(F(f, 0)).transpose(), b = P.row(F(f, 1)).transpose(), c = P.row(F(f, 2)).transpose();
-    const Vector3d normal = (b - a).cross(c - a);
-    const double length = normal.norm();
-    if (!(length > 0)) continue;
-    const double brightness = 0.25 + 0.75 * std::abs(normal.z()) / length;
-    const std::array<std::uint8_t, 3> color = {std::uint8_t(std::lround(200 * brightness)),
-                                               std::uint8_t(std::lround(205 * brightness)),
-                                               std::uint8_t(std::lround(225 * brightness))};
-    canvas.fillTriangle(frame(a.x(), a.y()), frame(b.x(), b.y()), frame(c.x(), c.y()),
-                        [&](int x, int y, double w0, double w1, double w2) {
-                          const double z = w0 * a.z() + w1 * b.z() + w2 * c.z();
-                          double& stored = canvas.depth(x, y);
-                          if (z <= stored) return;
-                          stored = z;
-                          canvas.put(x, y, color);
-                        });
-  }
-  const double radius = std::max(1.5, size / 250.0);
-  for (int v : highlightVertices)
-    canvas.drawDot(frame(P(v, 0), P(v, 1)), radius, {220, 20, 20}, P(v, 2), 0.02 * depthExtent);
-  return writePNG(path, size, size, canvas.rgb(), error);
+/** \ingroup MeshTools_Module
+  * \brief Draws the 3-D mesh as renderMeshShaded() does, textured with the checkerboard of its uv
+  * coordinates: a conformal map keeps the squares square on the surface, and area distortion shows
+  * as squares of different sizes.
+  *
+  * \param V        #V x 3 vertex positions (e.g. a parameterization's cut vertices).
+  * \param F        #F x 3 triangles.
+  * \param UV       #V x 2 uv coordinates of the same vertices.
+  * \param path     PNG file to write.
+  * \param rotation rotation applied to the vertices before projecting.
+  * \param size     picture width and height in pixels, in [8, 16384].
+  * \param checks   checkerboard squares along the longer side of the uv bounding box (>= 1).
+  * \param error    if not null, receives a message naming the file when something is wrong.
+  * \returns true when the picture was written.
+  *
+  * \sa renderMeshShaded(), renderUVCheckerboard()
+  */
+inline bool renderMeshCheckerboard(const MatrixXd& V, const MatrixXi& F, const MatrixXd& UV, const std::string& path,
+                                   const Matrix3d& rotation = Matrix3d::Identity(), int size = 800, int checks = 20,
+                                   std::string* error = nullptr)
+{
+  return internal::meshtools::renderShaded(V, F, &UV, checks, path, rotation, size, {}, error);
 }
 
 } // namespace Eigen
