@@ -321,3 +321,128 @@ TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was",
     unchanged();
   }
 }
+
+namespace {
+
+/** Cuts, undoes and constrains a triangle mesh step by step, as an interactive session would:
+  * seams from seamPath() cut with cutMeshAlongPath(), each cut given to insertDofs() and some
+  * undone by mergeDofs(); Dirichlet removals in between. Every step is checked against a fresh
+  * factorization and against SimplicialLLT on the cut matrix. */
+template <typename Cfg>
+void meshCutSession(const Eigen::MatrixXd& V0, const Eigen::MatrixXi& F0, int steps, unsigned seed) {
+  typedef typename Cfg::FullMatrix FullMatrix;
+  typedef typename Cfg::Scalar Scalar;
+  std::mt19937 g(seed);
+  auto laplacian = [](const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+    FullMatrix L = Eigen::cotanLaplacian<Scalar, typename Cfg::StorageIndex>(V, F);
+    FullMatrix I(L.rows(), L.cols());
+    I.setIdentity();
+    FullMatrix A = L + I * Scalar(1e-2);
+    A.makeCompressed();
+    return A;
+  };
+  struct State {
+    Eigen::MatrixXd V;
+    Eigen::MatrixXi F;
+    FullMatrix A;
+    std::vector<int> origin;  // the cut that led here
+  };
+  std::vector<State> history{State{V0, F0, laplacian(V0, F0), {}}};
+  typename Cfg::Solver llt;
+  llt.setThreadCount(1);
+  llt.compute(toInput<Cfg>(history.back().A));
+  REQUIRE(llt.info() == Eigen::Success);
+  std::vector<char> removed(V0.rows(), 0);
+  int cuts = 0, undos = 0;
+  for (int step = 0; step < steps; ++step) {
+    const State& cur = history.back();
+    const int nV = int(cur.V.rows());
+    int op = int(g() % 5);
+    if (step + 1 == steps && undos == 0) op = 2;
+    CAPTURE(step);
+    CAPTURE(op);
+    if (op <= 1 || (op == 2 && history.size() == 1)) {  // a new cut (only on dofs that are not removed)
+      std::vector<int> seam;
+      int pieces = 0;
+      for (unsigned attempt = 0; attempt < 20; ++attempt) {
+        seam = Eigen::seamPath(cur.F, nV, 3 + int(g() % 25), unsigned(g()), &pieces);
+        if (pieces == 1) break;
+      }
+      REQUIRE(pieces == 1);
+      bool anyRemoved = false;
+      for (int v : seam) anyRemoved = anyRemoved || removed[v];
+      if (anyRemoved) continue;
+      State next;
+      Eigen::VectorXi origin;
+      std::string error;
+      REQUIRE(Eigen::cutMeshAlongPath(cur.V, cur.F, seam, next.V, next.F, origin, &error));
+      next.A = laplacian(next.V, next.F);
+      next.origin.assign(origin.data(), origin.data() + origin.size());
+      llt.insertDofs(toInput<Cfg>(next.A), next.origin);
+      REQUIRE(llt.info() == Eigen::Success);
+      CHECK(llt.rows() == next.V.rows());
+      CHECK(llt.lastUpdate().flopFraction <= 1.0 + 1e-12);
+      history.push_back(next);
+      removed.resize(next.V.rows(), 0);
+      ++cuts;
+    } else if (op == 2) {  // undo the latest cut
+      const std::vector<int> origin = history.back().origin;
+      history.pop_back();
+      llt.mergeDofs(toInput<Cfg>(history.back().A), origin);
+      REQUIRE(llt.info() == Eigen::Success);
+      removed.resize(history.back().V.rows());
+      ++undos;
+    } else if (op == 3) {  // Dirichlet constraints on a short seam
+      std::vector<int> dofs;
+      for (int v : Eigen::seamPath(cur.F, nV, 1 + int(g() % 8), unsigned(g())))
+        if (!removed[v]) dofs.push_back(v);
+      llt.removeDofs(dofs);
+      REQUIRE(llt.info() == Eigen::Success);
+      for (int v : dofs) removed[v] = 1;
+    } else {  // all constraints released
+      std::vector<int> dofs;
+      for (int v = 0; v < nV; ++v)
+        if (removed[v]) dofs.push_back(v);
+      llt.restoreDofs(dofs);
+      REQUIRE(llt.info() == Eigen::Success);
+      std::fill(removed.begin(), removed.end(), 0);
+    }
+    const FullMatrix current = withIdentityRows<Cfg>(history.back().A, removed);
+    checkAgainstFresh<Cfg>(llt, current, g);
+    // the same answers as SimplicialLLT on the current (cut) matrix
+    typename Cfg::Reference reference(toInput<Cfg>(current));
+    REQUIRE(reference.info() == Eigen::Success);
+    const typename Cfg::Dense b = randomDense<Cfg>(current.rows(), 1, g);
+    const typename Cfg::Dense x = llt.solve(b), xr = reference.solve(b);
+    CHECK(double((x - xr).norm() / xr.norm()) <= 1e3 * exactTolerance<Cfg>());
+  }
+  CHECK(cuts > 0);
+  CHECK(undos > 0);
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("seam cuts of meshes with and without boundary", Cfg, uctest::d_int_col_lower_amd,
+                   uctest::d_long_row_lower_amd) {
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  SUBCASE("generated grid (boundary)") {
+    Eigen::gridMesh(30, 30, V, F);
+    meshCutSession<Cfg>(V, F, 30, 1);
+  }
+  SUBCASE("generated sphere (closed)") {
+    Eigen::icosphereMesh(3, V, F);
+    meshCutSession<Cfg>(V, F, 30, 2);
+  }
+  for (const char* name : {"camelhead", "fertility", "bunny"}) {
+    SUBCASE(name) {
+      const std::string path = std::string(UC_TEST_MESH_DIR) + "/" + name + ".off.gz";
+      std::string error;
+      if (!Eigen::readOFF(path, V, F, &error)) {
+        MESSAGE("skipped (no shared mesh): " << error);
+        return;
+      }
+      meshCutSession<Cfg>(V, F, Cfg::isPrimary ? 12 : 6, 3);
+    }
+  }
+}
