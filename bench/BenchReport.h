@@ -1,16 +1,18 @@
 // BenchReport: the small helpers the seam benchmarks (bench_remove_dofs, bench_insert_dofs) share
 // for their command lines, tables and CSV files: number formatting, mesh names, integer parsing,
-// the infinity norm of a sparse matrix.
+// the infinity norm of a sparse matrix, comma-separated option values, the loop over the meshes.
 
 #ifndef UPDATABLE_CHOLESKY_BENCH_BENCHREPORT_H
 #define UPDATABLE_CHOLESKY_BENCH_BENCHREPORT_H
 
 #include <Eigen/SparseCore>
+#include <unsupported/Eigen/MeshTools>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <sstream>
 #include <limits>
 #include <string>
@@ -134,6 +136,57 @@ double dirichletBackwardError(const SparseMatrixType& A, double normA, const std
     if (!inB[std::size_t(i)]) worst = std::max(worst, std::abs(r[i]));
   const double e = worst / (normA * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>());
   return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
+}
+
+/** Calls \a take on every item of the comma-separated \a value. \returns false when an item is
+  * empty, \a take returns false, or there is no item. */
+inline bool forEachListItem(const std::string& value, const std::function<bool(const std::string&)>& take)
+{
+  std::stringstream list(value);
+  std::string item;
+  int count = 0;
+  while (std::getline(list, item, ','))
+  {
+    if (item.empty() || !take(item)) return false;
+    ++count;
+  }
+  return count > 0;
+}
+
+/** Runs \a run(name, V, F) on a generated grid x grid mesh (if grid > 0) and on every mesh file of
+  * \a paths (readMesh: OFF, OBJ, PLY, plain or gzip). A file that cannot be read or a run that
+  * throws is reported (\a program names the benchmark) and counts as a failure.
+  * \returns true when every mesh was read and every run returned true. */
+inline bool forEachMesh(const char* program, int grid, const std::vector<std::string>& paths,
+                        const std::function<bool(const std::string&, const Eigen::MatrixXd&, const Eigen::MatrixXi&)>& run)
+{
+  std::vector<std::pair<std::string, std::string>> inputs; // name, path ("" = grid)
+  if (grid > 0) inputs.push_back({"grid" + std::to_string(grid) + "x" + std::to_string(grid), ""});
+  for (const std::string& m : paths) inputs.push_back({m.substr(m.find_last_of('/') + 1), m});
+  bool allOk = true;
+  for (const auto& input : inputs)
+  {
+    Eigen::MatrixXd V;
+    Eigen::MatrixXi F;
+    std::string error;
+    if (input.second.empty()) Eigen::gridMesh(grid, grid, V, F);
+    else if (!Eigen::readMesh(input.second, V, F, &error))
+    {
+      std::fprintf(stderr, "%s: %s\n", program, error.c_str());
+      allOk = false;
+      continue;
+    }
+    try
+    {
+      allOk = run(input.first, V, F) && allOk;
+    }
+    catch (const std::exception& e)
+    {
+      std::printf("  FAILED %s: %s\n", input.first.c_str(), e.what());
+      allOk = false;
+    }
+  }
+  return allOk;
 }
 
 } // namespace bench

@@ -226,17 +226,7 @@ bool parseOptions(int argc, char** argv, Options& o)
     const std::string::size_type eq = arg.find('=');
     const std::string key = arg.substr(0, eq), value = eq == std::string::npos ? std::string() : arg.substr(eq + 1);
     bool good = true;
-    auto splitList = [&](const std::function<bool(const std::string&)>& take) {
-      std::stringstream list(value);
-      std::string item;
-      int count = 0;
-      while (good && std::getline(list, item, ','))
-      {
-        good = !item.empty() && take(item);
-        ++count;
-      }
-      good = good && count > 0;
-    };
+    auto splitList = [&](const std::function<bool(const std::string&)>& take) { good = bench::forEachListItem(value, take); };
     if (key == "--mesh") splitList([&](const std::string& s) { o.meshes.push_back(s); return true; });
     else if (key == "--grid") good = parseInt(value, o.grid) && o.grid >= 2;
     else if (key == "--lengths")
@@ -821,37 +811,11 @@ int main(int argc, char** argv)
   std::printf("  every time is update + one solve (b uniform in [-1,1]), methods interleaved per seam after one "
               "warm-up seam\n");
 
-  std::vector<std::pair<std::string, std::string>> inputs; // name, path ("" = grid)
-  if (options.grid > 0) inputs.push_back({"grid" + std::to_string(options.grid) + "x" + std::to_string(options.grid), ""});
-  for (const std::string& m : options.meshes) inputs.push_back({m.substr(m.find_last_of('/') + 1), m});
-
-  bool allOk = true;
-  for (const auto& input : inputs)
-  {
-    Eigen::MatrixXd V;
-    Eigen::MatrixXi F;
-    if (input.second.empty()) Eigen::gridMesh(options.grid, options.grid, V, F);
-    else
-    {
-      std::string error;
-      if (!Eigen::readMesh(input.second, V, F, &error))
-      {
-        std::fprintf(stderr, "bench_insert_dofs: %s\n", error.c_str());
-        allOk = false;
-        continue;
-      }
-    }
-    try
-    {
-      MeshBench bench(options, input.first, V, F);
-      allOk = bench.run() && allOk;
-    }
-    catch (const std::exception& e)
-    {
-      std::printf("  FAILED %s: %s\n", input.first.c_str(), e.what());
-      allOk = false;
-    }
-  }
+  const bool allOk = bench::forEachMesh("bench_insert_dofs", options.grid, options.meshes,
+                                         [&](const std::string& name, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+                                           MeshBench bench(options, name, V, F);
+                                           return bench.run();
+                                         });
   if (!options.csvDir.empty())
     std::printf("\nCSV written to %s (plot: bench/plot_insert_dofs.sh %s)\n", options.csvDir.c_str(), options.csvDir.c_str());
   std::printf("%s\n", allOk ? "result: all answers agree" : "result: FAILURE (see FAILED lines above)");
