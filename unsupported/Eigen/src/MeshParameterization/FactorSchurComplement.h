@@ -21,9 +21,10 @@ namespace mesh_parameterization {
   * off-diagonal row of column j), the reach of the columns {perm[d]} is walked to the roots,
   * ordered by a depth-first postorder, and the right-hand sides are sorted by the postorder of
   * their start column: then row j of G is non-zero exactly on a contiguous range of them (those
-  * starting in j's subtree) and is stored as that range only. Forward substitution runs over the
-  * reach in postorder with one axpy of the range per entry of L; S is the sum, over runs of rows
-  * with the same range, of the dense products G_run^T G_run.
+  * starting in j's subtree) and is stored as that range only. Consecutive rows with the same range
+  * (chains up the tree, long near the root) are handled as dense blocks: forward substitution
+  * runs over these runs in postorder (a dense triangular solve, then one product for the rows
+  * below), and S is the sum over the runs of G_run^T G_run.
   * \returns false if a diagonal entry of L is missing or not positive. */
 template <typename FactorMatrix, typename PermutationIndices>
 bool unitVectorSchurComplement(const FactorMatrix& L, const PermutationIndices& perm, const std::vector<int>& dofs,
@@ -126,38 +127,64 @@ bool unitVectorSchurComplement(const FactorMatrix& L, const PermutationIndices& 
     G[offset[row] + std::size_t(t - lo[row])] = 1.0;
   }
 
-  // Forward substitution over the reach in postorder.
-  for (std::size_t t = 0; t < r; ++t)
+  // Runs: consecutive postorder rows with the same range. They form parent chains (the reach's
+  // leaves all start a right-hand side, so a new subtree brings a disjoint range): the top of the
+  // tree, where the work is, comes in long runs, solved as dense blocks.
+  std::vector<std::size_t> runStart(1, 0);
+  for (std::size_t t = 1; t < r; ++t)
+    if (lo[t] != lo[t - 1] || hi[t] != hi[t - 1]) runStart.push_back(t);
+  runStart.push_back(r);
+
+  // Forward substitution over the reach in postorder, one run at a time: G_T = L_TT^-1 G_T, then
+  // the rows U below the run (ancestors, later in postorder) get G_U -= L_UT G_T.
+  std::vector<int> slot(std::size_t(n), -1);
+  std::vector<int> below;
+  MatrixXd dense, update;
+  for (std::size_t q = 0; q + 1 < runStart.size(); ++q)
   {
-    const Index j = reach[std::size_t(post[t])];
-    const Index len = hi[t] - lo[t];
-    double diagonal = 0;
-    for (StorageIndex p = outer[j]; p < outer[j + 1]; ++p)
-      if (inner[p] == j) diagonal = value[p];
-    if (!(diagonal > 0)) return false;
-    Map<VectorXd> gj(G.data() + offset[t], len);
-    gj /= diagonal;
-    for (StorageIndex p = outer[j]; p < outer[j + 1]; ++p)
+    const std::size_t t0 = runStart[q], t1 = runStart[q + 1];
+    const Index b = Index(t1 - t0), len = hi[t0] - lo[t0];
+    for (std::size_t t = t0; t < t1; ++t) slot[std::size_t(reach[std::size_t(post[t])])] = int(t - t0);
+    below.clear();
+    for (std::size_t t = t0; t < t1; ++t)
     {
-      if (inner[p] <= j) continue;
-      const std::size_t ti = std::size_t(postOf[std::size_t(localOf[std::size_t(inner[p])])]);
-      Map<VectorXd>(G.data() + offset[ti] + std::size_t(lo[t] - lo[ti]), len).noalias() -= value[p] * gj;
+      const Index j = reach[std::size_t(post[t])];
+      for (StorageIndex p = outer[j]; p < outer[j + 1]; ++p)
+        if (inner[p] > j && slot[std::size_t(inner[p])] < 0)
+        {
+          slot[std::size_t(inner[p])] = int(b + Index(below.size()));
+          below.push_back(int(inner[p]));
+        }
+    }
+    dense.setZero(b + Index(below.size()), b);
+    for (std::size_t t = t0; t < t1; ++t)
+    {
+      const Index j = reach[std::size_t(post[t])];
+      for (StorageIndex p = outer[j]; p < outer[j + 1]; ++p)
+        if (inner[p] >= j) dense(slot[std::size_t(inner[p])], Index(t - t0)) = value[p];
+    }
+    for (std::size_t t = t0; t < t1; ++t) slot[std::size_t(reach[std::size_t(post[t])])] = -1;
+    for (int i : below) slot[std::size_t(i)] = -1;
+    if (!(dense.diagonal().minCoeff() > 0)) return false;
+    Map<Matrix<double, Dynamic, Dynamic, RowMajor>> GT(G.data() + offset[t0], b, len);
+    dense.topRows(b).triangularView<Lower>().solveInPlace(GT);
+    if (below.empty()) continue;
+    update.noalias() = dense.bottomRows(Index(below.size())) * GT;
+    for (std::size_t u = 0; u < below.size(); ++u)
+    {
+      const std::size_t ti = std::size_t(postOf[std::size_t(localOf[std::size_t(below[u])])]);
+      Map<RowVectorXd>(G.data() + offset[ti] + std::size_t(lo[t0] - lo[ti]), len) -= update.row(Index(u));
     }
   }
 
-  // S = sum over runs of consecutive rows with the same range of G_run^T G_run (lower triangle).
+  // S = sum over the runs of G_run^T G_run (lower triangle).
   MatrixXd Ssorted = MatrixXd::Zero(s, s);
-  for (std::size_t t = 0; t < r;)
+  for (std::size_t q = 0; q + 1 < runStart.size(); ++q)
   {
-    std::size_t end = t + 1;
-    while (end < r && lo[end] == lo[t] && hi[end] == hi[t]) ++end;
-    const Index len = hi[t] - lo[t];
-    if (len > 0)
-    {
-      Map<const Matrix<double, Dynamic, Dynamic, RowMajor>> run(G.data() + offset[t], Index(end - t), len);
-      Ssorted.block(lo[t], lo[t], len, len).selfadjointView<Lower>().rankUpdate(run.transpose());
-    }
-    t = end;
+    const std::size_t t0 = runStart[q], t1 = runStart[q + 1];
+    const Index len = hi[t0] - lo[t0];
+    Map<const Matrix<double, Dynamic, Dynamic, RowMajor>> run(G.data() + offset[t0], Index(t1 - t0), len);
+    Ssorted.block(lo[t0], lo[t0], len, len).selfadjointView<Lower>().rankUpdate(run.transpose());
   }
   for (Index a = 0; a < s; ++a)
     for (Index b = 0; b <= a; ++b)
