@@ -168,8 +168,12 @@ public:
   {
     MatrixXd Y = MatrixXd::Zero(X.rows(), X.cols());
     internal::meshparameterization::forEachWeightedEdge(m_cutFaces, m_cornerWeights, [&](Index, int a, int c, double w) {
-      Y.row(a) += w * (X.row(a) - X.row(c));
-      Y.row(c) += w * (X.row(c) - X.row(a));
+      for (Index j = 0; j < X.cols(); ++j)
+      {
+        const double flow = w * (X(a, j) - X(c, j));
+        Y(a, j) += flow;
+        Y(c, j) -= flow;
+      }
     });
     return Y;
   }
@@ -188,8 +192,10 @@ private:
       if (!m_onLoop[std::size_t(i)]) b.row(i) = rhs.row(i);
     internal::meshparameterization::forEachWeightedEdge(m_cutFaces, m_cornerWeights, [&](Index, int a, int c, double w) {
       // A_ac = -w: moving -A_IB g_B to the right-hand side adds w * g.
-      if (!m_onLoop[std::size_t(a)] && m_onLoop[std::size_t(c)]) b.row(a) += w * boundaryValues.row(c);
-      if (!m_onLoop[std::size_t(c)] && m_onLoop[std::size_t(a)]) b.row(c) += w * boundaryValues.row(a);
+      const bool aKnown = m_onLoop[std::size_t(a)] != 0, cKnown = m_onLoop[std::size_t(c)] != 0;
+      if (aKnown == cKnown) return;
+      const int free = aKnown ? c : a, known = aKnown ? a : c;
+      for (Index j = 0; j < k; ++j) b(free, j) += w * boundaryValues(known, j);
     });
     const MatrixXd x = m_solver.solve(b);
     MatrixXd X(nc, k);
