@@ -104,6 +104,7 @@ std::string routeName(UpdateRoute route)
   case UpdateRoute::Automatic: return "Automatic";
   case UpdateRoute::PartialRefactorization: return "Partial";
   case UpdateRoute::Refactorization: return "Refactor";
+  case UpdateRoute::Mixed: return "Mixed";
   default: return "route" + std::to_string(int(route));
   }
 }
@@ -129,6 +130,7 @@ std::vector<Method> allMethods()
   m.push_back({"ours_partial", "partial", Kind::Ours, UpdateRoute::PartialRefactorization});
   m.push_back({"ours_refactor", "refactor", Kind::Ours, UpdateRoute::Refactorization});
   if (LowRank::available) m.push_back({"ours_lowrank", "lowrank", Kind::Ours, LowRank::value()});
+  m.push_back({"ours_mixed", "mixed", Kind::Ours, UpdateRoute::Mixed});
   m.push_back({"cholmod_refactor", "CHM refac", Kind::CholmodRefactor, UpdateRoute::Automatic});
   m.push_back({"cholmod_reduced", "CHM A_II", Kind::CholmodReduced, UpdateRoute::Automatic});
   m.push_back({"cholmod_rowdel", "rowdel", Kind::Rowdel, UpdateRoute::Automatic});

@@ -22,7 +22,8 @@ enum class UpdateRoute {
   Automatic,               ///< the cheapest route by the cost model (default)
   PartialRefactorization,  ///< recompute the dirty supernodes only (Algorithm 3); exact
   LowRank,                 ///< removeDofs only: fold L(I,B) into L(I,I) along the paths of B
-  Refactorization          ///< recompute every supernode
+  Refactorization,         ///< recompute every supernode
+  Mixed                    ///< removeDofs only: low-rank below, partial refactorization of the top
 };
 
 /** \ingroup UpdatableCholesky_Module
@@ -45,13 +46,16 @@ namespace updatable_cholesky {
   * size of the matrix. */
 template <typename Scalar>
 struct UpdateWorkspace {
+  typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
   std::vector<char> mark;                                   ///< dirty marks
   std::vector<Index> rank, local;                           ///< per-supernode ranks (cost model)
+  std::vector<double> cost;                                 ///< per-supernode low-rank flops (cost model)
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carried;   ///< W passed to the parent
   void resize(Index supernodes) {
     mark.assign(supernodes, 0);
     rank.assign(supernodes, 0);
     local.assign(supernodes, 0);
+    cost.assign(supernodes, 0.0);
     carried.clear();
     carried.resize(supernodes);
   }

@@ -25,6 +25,14 @@ namespace Eigen {
 namespace internal {
 namespace updatable_cholesky {
 
+/** \internal Flops of folding \a rank columns of W whose rows above \a start (in the supernode's
+  * own numbering) are zero into a supernode of \a nr rows and \a nc columns: rotations or LQ
+  * touch only the columns from \a start on. */
+inline double foldFlops(double rank, double nr, double nc, double start) {
+  const double width = nc - start;
+  return width > 0 ? 4.0 * rank * (nr * width - width * width / 2) : 0.0;
+}
+
 /** \internal Flop estimate of the low-rank removal of the permuted columns \a removedNow over the
   * dirty supernodes \a dirty (increasing), from the symbolic structure only. */
 template <typename Scalar, typename StorageIndex>
@@ -33,19 +41,74 @@ double lowRankRemovalFlops(const SupernodalFactor<Scalar, StorageIndex>& f, cons
   std::vector<Index>& rankOut = ws.rank;
   std::vector<Index>& local = ws.local;
   for (StorageIndex b : removedNow) ++local[f.colToSuper[b]];
-  double flops = 0;
+  double total = 0;
   for (Index s : dirty) {
+    double flops = 0;
     const auto& node = f.nodes[s];
-    Index rank = local[s];
-    for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) rank += rankOut[c];
     const double nr = double(node.nrows()), nc = double(node.ncols), m = double(node.below());
-    flops += 4.0 * double(rank) * (nr * nc - nc * nc / 2);
+    Index rank = local[s];
+    if (local[s] > 0) {  // own removed columns start below the first of them
+      Index first = node.ncols;
+      for (StorageIndex b : removedNow)
+        if (f.colToSuper[b] == s) first = (std::min)(first, Index(b) - node.firstCol);
+      flops += foldFlops(double(local[s]), nr, nc, double(first + 1));
+    }
+    for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) {
+      if (rankOut[c] == 0) continue;
+      rank += rankOut[c];
+      flops += foldFlops(double(rankOut[c]), nr, nc, double(f.nodes[c].parentPosition[0]));
+    }
     if (double(rank) > m) flops += double(rank) * m * m;  // compression
     rankOut[s] = (std::min)(rank, node.below());
     flops += m * m * double(rankOut[s]);  // update-matrix correction
+    ws.cost[s] = flops;
+    total += flops;
   }
   for (Index s : dirty) rankOut[s] = local[s] = 0;
-  return flops;
+  return total;
+}
+
+/** \internal The cheapest mix of the two exact-enough routes for a removal: the dirty supernodes
+  * split into a lower part updated by low-rank folds and a top part (closed under taking parents)
+  * refactored from the cached update matrices, which the folds keep valid. A dynamic program over
+  * the dirty tree, from the per-supernode low-rank costs in ws.cost (lowRankRemovalFlops()) and the
+  * recomputation costs. Fills \a lowPart and \a topPart (increasing); \returns the flops. */
+template <typename Scalar, typename StorageIndex>
+double mixedRemovalPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& dirty,
+                        UpdateWorkspace<Scalar>& ws, std::vector<Index>& lowPart, std::vector<Index>& topPart) {
+  const Index count = Index(dirty.size());
+  std::vector<double> lowRank(count, 0.0), best(count, 0.0), lowRankBelow(count, 0.0), bestBelow(count, 0.0);
+  std::vector<char> recompute(count, 0);
+  std::vector<Index>& position = ws.local;  // supernode -> 1 + its position in dirty
+  for (Index k = 0; k < count; ++k) position[dirty[k]] = k + 1;
+  double total = 0;
+  for (Index k = 0; k < count; ++k) {  // children before parents
+    const Index s = dirty[k];
+    lowRank[k] = ws.cost[s] + lowRankBelow[k];
+    const double again = f.nodes[s].flops() + bestBelow[k];
+    recompute[k] = again < lowRank[k];
+    best[k] = recompute[k] ? again : lowRank[k];
+    const Index p = f.parent[s];
+    if (p == -1) {
+      total += best[k];
+    } else {
+      lowRankBelow[position[p] - 1] += lowRank[k];
+      bestBelow[position[p] - 1] += best[k];
+    }
+  }
+  std::vector<char> inTop(count, 0);
+  for (Index k = count - 1; k >= 0; --k) {  // parents before children
+    const Index p = f.parent[dirty[k]];
+    inTop[k] = recompute[k] && (p == -1 || inTop[position[p] - 1]);
+  }
+  lowPart.clear();
+  topPart.clear();
+  for (Index k = 0; k < count; ++k) (inTop[k] ? topPart : lowPart).push_back(dirty[k]);
+  for (Index s : dirty) {
+    position[s] = 0;
+    ws.cost[s] = 0;
+  }
+  return total;
 }
 
 /** \internal l := (l + conj(s) w) / c and w := c w - s l (new l), elementwise: one Givens
@@ -60,17 +123,19 @@ EIGEN_DONT_INLINE void rotateColumns(Index n, Scalar* EIGEN_RESTRICT l, Scalar* 
   }
 }
 
-/** \internal Rank-r fold by Givens rotations, column by column: [L(:,j) W(:,t)] G(j,t). */
+/** \internal Fold by Givens rotations of the W columns [first, first+count), zero above row
+  * \a start, column by column: [L(:,j) W(:,t)] G(j,t) for j >= start. */
 template <typename Scalar, typename StorageIndex, typename Dense>
-double foldByRotations(Supernode<Scalar, StorageIndex>& node, Dense& W, const char* removed) {
+double foldByRotations(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count, Index start,
+                       const char* removed) {
   typedef typename NumTraits<Scalar>::Real RealScalar;
-  const Index nr = node.nrows(), nc = node.ncols, rank = W.cols();
+  const Index nr = node.nrows(), nc = node.ncols;
   Scalar* L = node.values.data();
   double flops = 0;
-  for (Index j = 0; j < nc; ++j) {
+  for (Index j = start; j < nc; ++j) {
     if (removed[node.rows[j]]) continue;
     Scalar* lj = L + j * nr;
-    for (Index t = 0; t < rank; ++t) {
+    for (Index t = first; t < first + count; ++t) {
       Scalar* w = W.data() + t * nr;
       const Scalar wj = w[j];
       if (wj == Scalar(0)) continue;
@@ -91,36 +156,44 @@ double foldByRotations(Supernode<Scalar, StorageIndex>& node, Dense& W, const ch
   * triangular-pentagonal LQ (?tplqt/?tpmlqt), where the per-call cost pays off. */
 enum { BlockedFoldMinRank = 8 };
 
-/** \internal Folds the columns of W (rows = the supernode's rows; zero on removed rows) into the
-  * supernode's kept columns, leaving in W's rows below the part to pass on. Unit columns of
-  * removed dofs stay unit columns (their rows are zero in W). \returns the flops spent. */
+/** \internal Folds the W columns [first, first+count) (rows = the supernode's rows; zero on
+  * removed rows and above row \a start) into the supernode's kept columns, leaving in W's rows
+  * below the part to pass on. Unit columns of removed dofs stay unit columns (their rows are
+  * zero in W). \returns the flops spent. */
 template <typename Scalar, typename StorageIndex, typename Dense>
-double foldIntoColumns(Supernode<Scalar, StorageIndex>& node, Dense& W, const char* removed) {
-  const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, rank = W.cols();
-  if (rank == 0) return 0;
+double foldIntoColumns(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count, Index start,
+                       const char* removed) {
+  const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, width = nc - start;
+  if (count == 0 || width <= 0) return 0;
 #ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
   if constexpr (BlasTraits<Scalar>::Supported) {
-    if (rank >= BlockedFoldMinRank && nc >= BlockedFoldMinRank) {
+    if (count >= BlockedFoldMinRank && width >= BlockedFoldMinRank) {
       typedef typename NumTraits<Scalar>::Real RealScalar;
-      Scalar* L = node.values.data();
-      const int mb = int((std::min<Index>)(32, nc));
-      std::vector<Scalar> t(Index(mb) * nc), work(Index(mb) * (std::max)(nc, m));
+      Scalar* L = node.values.data() + start * nr + start;  // the trailing block from (start, start)
+      Scalar* Wg = W.data() + first * nr + start;
+      const int mb = int((std::min<Index>)(32, width));
+      std::vector<Scalar> t(Index(mb) * width), work(Index(mb) * (std::max)(width, m));
       // LQ of [L11 W_top] = [L11' 0] Q, then [L21 W_below] Q^H = [L21' W_out]
-      int info = blasTplqt(int(nc), int(rank), mb, L, int(nr), W.data(), int(nr), t.data(), mb, work.data());
+      int info = blasTplqt(int(width), int(count), mb, L, int(nr), Wg, int(nr), t.data(), mb, work.data());
       if (info == 0 && m > 0)
-        info = blasTpmlqtRightAdjoint(int(m), int(rank), int(nc), mb, W.data(), int(nr), t.data(), mb, L + nc,
-                                      int(nr), W.data() + nc, int(nr), work.data());
+        info = blasTpmlqtRightAdjoint(int(m), int(count), int(width), mb, Wg, int(nr), t.data(), mb, L + width,
+                                      int(nr), Wg + width, int(nr), work.data());
       eigen_assert(info == 0 && "LAPACK tplqt/tpmlqt failed");
-      W.topRows(nc).setZero();
-      for (Index j = 0; j < nc; ++j)  // Householder LQ may leave negative pivots: flip the column
-        if (numext::real(L[j + j * nr]) < RealScalar(0))
-          for (Index i = j; i < nr; ++i) L[i + j * nr] = -L[i + j * nr];
-      return 2.0 * double(nc) * double(nc) * double(rank) + 4.0 * double(m) * double(nc) * double(rank);
+      W.block(start, first, width, count).setZero();
+      for (Index j = start; j < nc; ++j)  // Householder LQ may leave negative pivots: flip the column
+        if (numext::real(node.values(j, j)) < RealScalar(0)) node.values.col(j).tail(nr - j) *= Scalar(-1);
+      return 2.0 * double(width) * double(width) * double(count) + 4.0 * double(m) * double(width) * double(count);
     }
   }
 #endif
-  return foldByRotations(node, W, removed);
+  return foldByRotations(node, W, first, count, start, removed);
 }
+
+/** \internal A block of W columns arriving at a supernode: from a child (child >= 0) or the
+  * supernode's own removed columns (child = -1), zero above row \a start. */
+struct FoldSource {
+  Index start, count, child;
+};
 
 /** \internal Removes the permuted columns \a removedNow (whose flags are already set in
   * \a removed, with those of earlier removals) from the factor by a low-rank update of the dirty
@@ -134,6 +207,7 @@ double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std
   std::vector<Dense>& carried = ws.carried;  // W passed from a supernode to its parent
   double flops = 0;
   std::vector<Index> removedPositions, removedColumns;
+  std::vector<FoldSource> sources;
   for (Index s : dirty) {
     auto& node = f.nodes[s];
     const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
@@ -144,28 +218,38 @@ double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std
     for (Index p = 0; p < nr; ++p)
       if (removed[node.rows[p]]) removedPositions.push_back(p);
     // 1. W at this supernode: the children's carried columns, then the removed columns that
-    //    are still columns of L (not unit yet).
-    Index rank = 0;
-    for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) rank += carried[c].cols();
+    //    are still columns of L (not unit yet). Each source is zero above its first row here (a
+    //    child's: its first row below; a removed column p: p + 1); W's columns are ordered by
+    //    that start so that a fold touches only the columns from its start on.
+    sources.clear();
+    for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c])
+      if (carried[c].cols() > 0) sources.push_back(FoldSource{f.nodes[c].parentPosition[0], carried[c].cols(), c});
     for (Index p : removedPositions) {
       if (p >= nc) break;
       bool unit = true;
       for (Index i = p + 1; i < nr && unit; ++i) unit = L[i + p * nr] == Scalar(0);
       if (!unit || L[p + p * nr] != Scalar(1)) removedColumns.push_back(p);
     }
-    rank += Index(removedColumns.size());
+    if (!removedColumns.empty())
+      sources.push_back(FoldSource{removedColumns.front() + 1, Index(removedColumns.size()), -1});
+    std::sort(sources.begin(), sources.end(), [](const FoldSource& a, const FoldSource& b) { return a.start < b.start; });
+    Index rank = 0;
+    for (const FoldSource& src : sources) rank += src.count;
     Dense W = Dense::Zero(nr, rank);
     Index q = 0;
-    for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) {
-      const Dense& wc = carried[c];
-      const auto& pos = f.nodes[c].parentPosition;
-      for (Index j = 0; j < wc.cols(); ++j, ++q)
-        for (Index k = 0; k < wc.rows(); ++k) W(pos[k], q) = wc(k, j);
-      carried[c] = Dense();
-    }
-    for (Index p : removedColumns) {
-      for (Index i = p + 1; i < nr; ++i) W(i, q) = L[i + p * nr];
-      ++q;
+    for (const FoldSource& src : sources) {
+      if (src.child >= 0) {
+        const Dense& wc = carried[src.child];
+        const auto& pos = f.nodes[src.child].parentPosition;
+        for (Index j = 0; j < wc.cols(); ++j, ++q)
+          for (Index k = 0; k < wc.rows(); ++k) W(pos[k], q) = wc(k, j);
+        carried[src.child] = Dense();
+      } else {
+        for (Index p : removedColumns) {
+          for (Index i = p + 1; i < nr; ++i) W(i, q) = L[i + p * nr];
+          ++q;
+        }
+      }
     }
     // 2. the removed dofs' rows and columns become those of the identity, in L, U and W
     for (Index p : removedPositions) {
@@ -184,9 +268,21 @@ double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std
       }
     }
     if (rank == 0) continue;
-    // 3. fold W into the kept columns: [L(:,J) W] G = [L'(:,J) W'] with G unitary and W' zero
-    //    on the supernode's own rows
-    flops += foldIntoColumns(node, W, removed);
+    // 3. fold W into the kept columns, [L(:,J) W] G = [L'(:,J) W'] with G unitary and W' zero on
+    //    the supernode's own rows, one group of sources with close starts at a time
+    for (std::size_t g = 0, first = 0; g < sources.size();) {
+      const Index start = sources[g].start;
+      Index count = 0;
+      std::size_t h = g;
+      for (; h < sources.size(); ++h) {  // join sources while the wasted part is small
+        const bool close = sources[h].start - start <= (nc - start) / 8;
+        if (h > g && !close && count >= Index(BlockedFoldMinRank)) break;
+        count += sources[h].count;
+      }
+      flops += foldIntoColumns(node, W, Index(first), count, start, removed);
+      first += std::size_t(count);
+      g = h;
+    }
     if (m == 0) continue;
     // 4. what is left of W lives on the rows below: compress, correct U, carry to the parent
     Dense out = W.bottomRows(m);

@@ -541,19 +541,39 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   const std::vector<Index> dirty = dirtySupernodes(m_factor, m_upper, permutedColumns, m_workspace);
   const double totalFlops = m_totalFlops, dirtyFlops = supernodeFlops(m_factor, dirty);
   UpdateRoute route = m_route;
-  if (route == UpdateRoute::LowRank && !isRemoval) route = UpdateRoute::Automatic;
+  if ((route == UpdateRoute::LowRank || route == UpdateRoute::Mixed) && !isRemoval) route = UpdateRoute::Automatic;
   if (!m_numeric.hasCachedUpdates()) route = UpdateRoute::Refactorization;
-  double lowRankFlops = 0;
-  if (isRemoval && (route == UpdateRoute::Automatic || route == UpdateRoute::LowRank))
+  double lowRankFlops = 0, mixedFlops = 0;
+  std::vector<Index> lowPart, topPart;
+  if (isRemoval && route != UpdateRoute::Refactorization && route != UpdateRoute::PartialRefactorization) {
     lowRankFlops = lowRankRemovalFlops(m_factor, dirty, permutedColumns, m_workspace);
+    if (route != UpdateRoute::LowRank) mixedFlops = mixedRemovalPlan(m_factor, dirty, m_workspace, lowPart, topPart);
+  }
   if (route == UpdateRoute::Automatic) {  // the full factorization runs on all threads
-    route = dirtyFlops * threadCount() > 0.9 * totalFlops ? UpdateRoute::Refactorization
-                                                          : UpdateRoute::PartialRefactorization;
-    if (isRemoval && lowRankFlops < (std::min)(dirtyFlops, totalFlops / threadCount())) route = UpdateRoute::LowRank;
+    const double full = totalFlops / threadCount();
+    route = dirtyFlops > 0.9 * full ? UpdateRoute::Refactorization : UpdateRoute::PartialRefactorization;
+    if (isRemoval && mixedFlops < (std::min)(dirtyFlops, full))
+      route = topPart.empty() ? UpdateRoute::LowRank : lowPart.empty() ? UpdateRoute::PartialRefactorization
+                                                                         : UpdateRoute::Mixed;
   }
   if (route == UpdateRoute::LowRank) {  // cannot fail: removal keeps A positive definite
     const double flops = lowRankRemoval(m_factor, m_numeric.cache(), dirty, m_removedPermuted.data(), m_workspace);
     m_info = Success;
+    recordUpdate(route, Index(permutedColumns.size()), dirty, flops, start);
+    return;
+  }
+  if (route == UpdateRoute::Mixed) {  // folds below, then the top refactored from the caches they keep valid
+    double flops = lowRankRemoval(m_factor, m_numeric.cache(), lowPart, m_removedPermuted.data(), m_workspace);
+    for (Index s : lowPart) m_workspace.carried[s] = typename UpdateWorkspace<Scalar>::Dense();
+    flops += supernodeFlops(m_factor, topPart);
+    const Index bad = m_numeric.refactorize(m_factor, numericInput(), topPart, threadCount());
+    m_info = Success;
+    if (bad >= 0) {  // (not expected for a removal, e.g. NaN) the previous matrix and a full factorization
+      m_failedColumn = m_Pinv.indices()[bad];
+      revert();
+      m_factorizationIsOk = m_numeric.factorize(m_factor, numericInput(), threadCount()) < 0;
+      m_info = NumericalIssue;
+    }
     recordUpdate(route, Index(permutedColumns.size()), dirty, flops, start);
     return;
   }
