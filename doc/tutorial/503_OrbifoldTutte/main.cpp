@@ -58,10 +58,10 @@ int main(int argc, char** argv)
   std::printf("type I: seam of %ld vertices, %ld constraints; factor %.1f ms, Schur %.1f ms, solve %.1f ms\n",
               long(st.seamVertices), long(st.constraints), 1e3 * st.factorSeconds, 1e3 * st.schurSeconds,
               1e3 * st.solveSeconds);
+  const Matrix3d view = (AngleAxisd(0.5, Vector3d::UnitX()) * AngleAxisd(1.3, Vector3d::UnitY())).toRotationMatrix();
   if (!renderUVCheckerboard(orbifold.uv(), orbifold.cutFaces(), outputDir + "/503_OrbifoldTutte.png", 600, 24,
                             &error) ||
-      !renderMeshShaded(V, F, outputDir + "/503_OrbifoldTutte_mesh.png",
-                        (AngleAxisd(0.5, Vector3d::UnitX()) * AngleAxisd(1.3, Vector3d::UnitY())).toRotationMatrix(), 600, orbifold.seam(), &error))
+      !renderMeshShaded(V, F, outputDir + "/503_OrbifoldTutte_mesh.png", view, 600, orbifold.seam(), &error))
   {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
