@@ -382,6 +382,8 @@ TEST_CASE("Orbifold Tutte edits update the factor and match a fresh computation"
     REQUIRE(fresh.uv().rows() == edited.uv().rows());
     CHECK((fresh.uv() - edited.uv()).cwiseAbs().maxCoeff() < 1e-9);
     CHECK((fresh.cutFaces() - edited.cutFaces()).cwiseAbs().maxCoeff() == 0);
+    // and a solver that shares nothing with ours: SparseLU on the KKT system of the new cut
+    CHECK((kktSolution(edited) - edited.uv()).cwiseAbs().maxCoeff() < 1e-9);
   }
 }
 
