@@ -10,7 +10,9 @@
 // of its own removed columns, applies Givens rotations that fold them into S's kept columns
 // (cost ~ 4 · rank · rows · columns), and passes the rest of W (compressed to at most as many
 // columns as S has rows below) to the parent. The cached update matrix of S changes by exactly
-// U_S += W_out W_out^H, so the cache stays usable by later partial refactorizations. Rows of the
+// U_S += W_out W_out^H, so the cache stays usable by later partial refactorizations; that
+// correction is deferred until the cache is read (SupernodalNumeric::deferCorrection()), since
+// most cached matrices on the path are recomputed before they are read again. Rows of the
 // removed dofs are zeroed wherever they appear (the row subtrees of B).
 //
 // The result solves to the accuracy of a fresh factorization, but is not bitwise equal to it.
@@ -59,8 +61,7 @@ double lowRankRemovalFlops(const SupernodalFactor<Scalar, StorageIndex>& f, cons
       flops += foldFlops(double(rankOut[c]), nr, nc, double(f.nodes[c].parentPosition[0]));
     }
     if (double(rank) > m) flops += double(rank) * m * m;  // compression
-    rankOut[s] = (std::min)(rank, node.below());
-    flops += m * m * double(rankOut[s]);  // update-matrix correction
+    rankOut[s] = (std::min)(rank, node.below());  // (its update-matrix correction is deferred)
     ws.cost[s] = flops;
     total += flops;
   }
@@ -200,9 +201,9 @@ struct FoldSource {
   * supernodes \a dirty (increasing, as from dirtySupernodes()), keeping the cached update
   * matrices \a cache consistent. \returns the flops spent. */
 template <typename Scalar, typename StorageIndex>
-double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::vector<Scalar> >& cache,
+double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
                       const std::vector<Index>& dirty, const char* removed, UpdateWorkspace<Scalar>& ws) {
-  typedef typename NumTraits<Scalar>::Real RealScalar;
+  std::vector<std::vector<Scalar> >& cache = numeric.cache();
   typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
   std::vector<Dense>& carried = ws.carried;  // W passed from a supernode to its parent
   double flops = 0;
@@ -265,6 +266,7 @@ double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std
           U[u + i * m] = Scalar(0);
           U[i + u * m] = Scalar(0);
         }
+        for (Dense& w : numeric.pendingCorrections(s)) w.row(u).setZero();
       }
     }
     if (rank == 0) continue;
@@ -291,8 +293,8 @@ double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std
       out = qr.matrixQR().topRows(m).template triangularView<Upper>().adjoint();
       flops += double(rank) * double(m) * double(m);
     }
-    herkLower(m, out.cols(), RealScalar(1), out.data(), m, U, m);
-    flops += double(m) * double(m) * double(out.cols());
+    Dense correction = out;  // U_S += W_out W_out^H, deferred until the cache is read
+    numeric.deferCorrection(f, s, correction);
     if (f.parent[s] != -1) carried[s].swap(out);
   }
   return flops;

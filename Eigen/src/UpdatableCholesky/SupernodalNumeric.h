@@ -124,12 +124,16 @@ class SupernodalNumeric {
   typedef SupernodalFactor<Scalar, StorageIndex> Factor;
   typedef Supernode<Scalar, StorageIndex> Node;
   typedef NumericInput<Scalar> Input;
+  typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
 
   /** Keep every supernode's update matrix after a factorization (the cache that lets
     * refactorize() recompute a supernode from its children without touching clean subtrees).
     * Takes effect at the next factorize(). */
   void setCacheUpdates(bool cache) {
-    if (!cache) m_cache.clear();
+    if (!cache) {
+      m_cache.clear();
+      m_pending.clear();
+    }
     m_cacheUpdates = cache;
   }
   /** True when the update matrices of the last factorization are cached. */
@@ -143,7 +147,10 @@ class SupernodalNumeric {
       m_location.assign(f.count(), Location());
     }
     m_cacheValid = false;
-    if (m_cacheUpdates) m_cache.resize(f.count());
+    if (m_cacheUpdates) {
+      m_cache.resize(f.count());
+      m_pending.resize(f.count());
+    }
     const Index workers = Index(m_schedule.workerRoots.size());
     m_stacks.resize(workers + 1);
     for (auto& stack : m_stacks) stack.top = 0;
@@ -187,11 +194,38 @@ class SupernodalNumeric {
     * that change them in place. */
   std::vector<std::vector<Scalar> >& cache() { return m_cache; }
 
+  /** Defers the correction U_s += W W^H of the cached update matrix of supernode \a s (W: below() ×
+    * r) until the cache is read; most such corrections are never read, because the supernode is
+    * recomputed first (e.g. restoreDofs() after removeDofs()). Applied at once when they pile up. */
+  void deferCorrection(const Factor& f, Index s, Dense& W) {
+    auto& list = m_pending[s];
+    list.emplace_back();
+    list.back().swap(W);
+    Index columns = 0;
+    for (const Dense& w : list) columns += w.cols();
+    if (2 * columns >= f.nodes[s].below()) applyCorrections(f, s);
+  }
+  /** The deferred corrections of supernode \a s (their rows of removed dofs are zeroed with U's). */
+  std::vector<Dense>& pendingCorrections(Index s) { return m_pending[s]; }
+  /** Applies the deferred corrections of supernode \a s to its cached update matrix. \returns the flops. */
+  double applyCorrections(const Factor& f, Index s) {
+    double flops = 0;
+    const Index m = f.nodes[s].below();
+    for (const Dense& w : m_pending[s]) {
+      herkLower(m, w.cols(), RealScalar(1), w.data(), m, m_cache[s].data(), m);
+      flops += double(m) * double(m) * double(w.cols());
+    }
+    m_pending[s].clear();
+    return flops;
+  }
+
   /** Bytes of update-matrix workspace currently held. */
   Index workspaceBytes() const {
     Index b = 0;
     for (const auto& s : m_stacks) b += Index(s.buffer.capacity() * sizeof(Scalar));
     for (const auto& u : m_cache) b += Index(u.capacity() * sizeof(Scalar));
+    for (const auto& list : m_pending)
+      for (const Dense& w : list) b += Index(w.size() * sizeof(Scalar));
     return b;
   }
 
@@ -209,6 +243,7 @@ class SupernodalNumeric {
     m_location.clear();
     m_stacks.clear();
     m_cache.clear();
+    m_pending.clear();
     m_cacheValid = false;
   }
 
@@ -274,6 +309,7 @@ class SupernodalNumeric {
     Index uOffset = 0;
     if (m_cacheUpdates) {
       m_cache[s].assign(m * m, Scalar(0));
+      m_pending[s].clear();  // recomputed: earlier corrections are part of the new values
       U = m_cache[s].data();
     } else {
       UpdateStack<Scalar>& stack = m_stacks[stackId];
@@ -284,6 +320,7 @@ class SupernodalNumeric {
     Index lowestChild = -1;
     for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) {
       const Location& loc = m_location[c];
+      if (m_cacheUpdates && !m_pending[c].empty()) applyCorrections(f, c);
       const Scalar* childU = m_cacheUpdates ? m_cache[c].data() : m_stacks[loc.stack].buffer.data() + loc.offset;
       extendAdd(f.nodes[c], childU, L, nr, nc, U, m);
       if (!m_cacheUpdates && loc.stack == stackId && (lowestChild < 0 || loc.offset < lowestChild))
@@ -336,6 +373,7 @@ class SupernodalNumeric {
   std::vector<Location> m_location;
   std::vector<UpdateStack<Scalar> > m_stacks;
   std::vector<std::vector<Scalar> > m_cache;  ///< per supernode update matrix, when caching
+  std::vector<std::vector<Dense> > m_pending;  ///< per supernode deferred corrections U += W W^H
   bool m_cacheUpdates = false, m_cacheValid = false;
   std::atomic<Index> m_failed{-1};
 };

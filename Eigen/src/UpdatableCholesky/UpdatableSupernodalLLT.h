@@ -543,11 +543,11 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   UpdateRoute route = m_route;
   if ((route == UpdateRoute::LowRank || route == UpdateRoute::Mixed) && !isRemoval) route = UpdateRoute::Automatic;
   if (!m_numeric.hasCachedUpdates()) route = UpdateRoute::Refactorization;
-  double lowRankFlops = 0, mixedFlops = 0;
+  double mixedFlops = 0;  // the best plan of low-rank folds below and refactorization on top
   std::vector<Index> lowPart, topPart;
-  if (isRemoval && route != UpdateRoute::Refactorization && route != UpdateRoute::PartialRefactorization) {
-    lowRankFlops = lowRankRemovalFlops(m_factor, dirty, permutedColumns, m_workspace);
-    if (route != UpdateRoute::LowRank) mixedFlops = mixedRemovalPlan(m_factor, dirty, m_workspace, lowPart, topPart);
+  if (isRemoval && (route == UpdateRoute::Automatic || route == UpdateRoute::Mixed)) {
+    lowRankRemovalFlops(m_factor, dirty, permutedColumns, m_workspace);  // per-supernode costs
+    mixedFlops = mixedRemovalPlan(m_factor, dirty, m_workspace, lowPart, topPart);
   }
   if (route == UpdateRoute::Automatic) {  // the full factorization runs on all threads
     const double full = totalFlops / threadCount();
@@ -557,13 +557,13 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
                                                                          : UpdateRoute::Mixed;
   }
   if (route == UpdateRoute::LowRank) {  // cannot fail: removal keeps A positive definite
-    const double flops = lowRankRemoval(m_factor, m_numeric.cache(), dirty, m_removedPermuted.data(), m_workspace);
+    const double flops = lowRankRemoval(m_factor, m_numeric, dirty, m_removedPermuted.data(), m_workspace);
     m_info = Success;
     recordUpdate(route, Index(permutedColumns.size()), dirty, flops, start);
     return;
   }
   if (route == UpdateRoute::Mixed) {  // folds below, then the top refactored from the caches they keep valid
-    double flops = lowRankRemoval(m_factor, m_numeric.cache(), lowPart, m_removedPermuted.data(), m_workspace);
+    double flops = lowRankRemoval(m_factor, m_numeric, lowPart, m_removedPermuted.data(), m_workspace);
     for (Index s : lowPart) m_workspace.carried[s] = typename UpdateWorkspace<Scalar>::Dense();
     flops += supernodeFlops(m_factor, topPart);
     const Index bad = m_numeric.refactorize(m_factor, numericInput(), topPart, threadCount());
@@ -875,6 +875,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
 
   // 4. The new structure and input; the previous ones kept aside for a revert.
   FactorStructureBackup<Scalar, StorageIndex> backup;
+  if (m_numeric.hasCachedUpdates())  // the dirty caches are set aside as they are: no deferred parts
+    for (Index s : dirty) m_numeric.applyCorrections(m_factor, s);
   relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
   InputPattern<StorageIndex> oldPattern = std::move(m_pattern);
   m_pattern = InputPattern<StorageIndex>();
