@@ -20,8 +20,9 @@ namespace Eigen {
 namespace internal {
 namespace updatable_cholesky {
 
-/** \internal Supernodes up to this many columns are solved with the inline kernels. */
-enum { SmallSolveColumns = 24 };
+/** \internal Supernodes up to this many columns are solved with the inline kernels (memory bound
+  * there: as fast as BLAS and without its per-call cost); larger ones with BLAS-2/3. */
+enum { SmallSolveColumns = 128 };
 /** \internal Up to this many right-hand sides are solved by the inline kernels in one pass. */
 enum { InlineSolveRhs = 4 };
 /** \internal Bytes of the next supernode's block prefetched while the current one is solved. */
@@ -38,115 +39,118 @@ EIGEN_STRONG_INLINE void prefetchSupernode(const Supernode<Scalar, StorageIndex>
   for (Index b = 0; b < rowBytes; b += 64) internal::prefetch(r + b);
 }
 
-/** \internal W (m×K, leading dimension m) op= L(:, 0..B) X(0..B, :) for B ≤ 4 columns of L
-  * (leading dimension ldl) and the K right-hand sides x (leading dimension ldx); op is = when
-  * \a first, += otherwise. */
+/** \internal One block of B ≤ 4 columns j0.. of a small supernode in the forward pass, for K
+  * right-hand sides held in v (nr×K, leading dimension nr, the supernode's rows): solves the B×B
+  * diagonal triangle, then v(i,:) -= L(i, block) x_block for every row i below the triangle, in
+  * one loop that reads each of the B columns of L once. */
 template <int B, int K, typename Scalar>
-EIGEN_STRONG_INLINE void blockProduct(bool first, Index m, const Scalar* l, Index ldl, const Scalar* x, Index ldx,
-                                      Scalar* w) {
-  const Scalar* lc[4];
-  Scalar xc[4][K];
+EIGEN_STRONG_INLINE void forwardColumnBlock(Index nr, Index j0, const Scalar* L, Scalar* v) {
+  const Scalar* l[B];
+  Scalar x[B][K];
+  for (int b = 0; b < B; ++b) l[b] = L + (j0 + b) * nr;
   for (int b = 0; b < B; ++b) {
-    lc[b] = l + b * ldl;
-    for (int c = 0; c < K; ++c) xc[b][c] = x[b + c * ldx];
+    const Scalar inverse = Scalar(1) / l[b][j0 + b];  // off the dependency chain of x
+    for (int c = 0; c < K; ++c) {
+      Scalar t = v[j0 + b + c * nr];
+      for (int e = 0; e < b; ++e) t -= l[e][j0 + b] * x[e][c];
+      x[b][c] = t * inverse;
+      v[j0 + b + c * nr] = x[b][c];
+    }
   }
-  for (int c = 0; c < K; ++c) {
-    Scalar* wc = w + c * m;
-    if (first)
-      for (Index i = 0; i < m; ++i) {
-        Scalar s = lc[0][i] * xc[0][c];
-        for (int b = 1; b < B; ++b) s += lc[b][i] * xc[b][c];
-        wc[i] = s;
-      }
-    else
-      for (Index i = 0; i < m; ++i) {
-        Scalar s = wc[i];
-        for (int b = 0; b < B; ++b) s += lc[b][i] * xc[b][c];
-        wc[i] = s;
-      }
-  }
+  for (Index i = j0 + B; i < nr; ++i)
+    for (int c = 0; c < K; ++c) {
+      Scalar sum = l[0][i] * x[0][c];
+      for (int b = 1; b < B; ++b) sum += l[b][i] * x[b][c];
+      v[i + c * nr] -= sum;
+    }
 }
 
-/** \internal X(0..B, :) -= L(:, 0..B)^H W for B ≤ 4 columns of L and K right-hand sides
-  * (W is m×K with leading dimension m; X has leading dimension ldx). */
+/** \internal One block of B ≤ 4 columns j0.. of a small supernode in the backward pass:
+  * v(block,:) -= L(i, block)^H v(i,:) over the rows i below the block (one loop reading each of
+  * the B columns once), then the B×B triangle L(block, block)^H is solved. */
 template <int B, int K, typename Scalar>
-EIGEN_STRONG_INLINE void blockAdjointProduct(Index m, const Scalar* l, Index ldl, const Scalar* w, Scalar* x,
-                                             Index ldx) {
-  const Scalar* lc[4];
-  for (int b = 0; b < B; ++b) lc[b] = l + b * ldl;
+EIGEN_STRONG_INLINE void backwardColumnBlock(Index nr, Index j0, const Scalar* L, Scalar* v) {
+  const Scalar* l[B];
+  Scalar sum[B][K];
+  for (int b = 0; b < B; ++b) {
+    l[b] = L + (j0 + b) * nr;
+    for (int c = 0; c < K; ++c) sum[b][c] = Scalar(0);
+  }
+  for (Index i = j0 + B; i < nr; ++i)
+    for (int c = 0; c < K; ++c) {
+      const Scalar w = v[i + c * nr];
+      for (int b = 0; b < B; ++b) sum[b][c] += numext::conj(l[b][i]) * w;
+    }
+  for (int b = B - 1; b >= 0; --b) {
+    const Scalar inverse = Scalar(1) / numext::conj(l[b][j0 + b]);
+    for (int c = 0; c < K; ++c) {
+      Scalar t = v[j0 + b + c * nr] - sum[b][c];
+      for (int e = b + 1; e < B; ++e) t -= numext::conj(l[b][j0 + e]) * v[j0 + e + c * nr];
+      v[j0 + b + c * nr] = t * inverse;
+    }
+  }
+}
+
+/** \internal Forward pass over one small supernode with K right-hand sides: x_S and zeros for
+  * the rows below are laid out contiguously in v, the column blocks run over v, then x_S is
+  * written back and the rows below are scattered into X. */
+template <int K, typename Scalar, typename StorageIndex>
+void forwardSmallSupernode(const Supernode<Scalar, StorageIndex>& node, Scalar* X, Index ldx, Scalar* v) {
+  const Index nr = node.nrows(), nc = node.ncols;
+  const Scalar* L = node.values.data();
   for (int c = 0; c < K; ++c) {
-    const Scalar* wc = w + c * m;
-    Scalar s[4] = {Scalar(0), Scalar(0), Scalar(0), Scalar(0)};
-    Scalar t[4] = {Scalar(0), Scalar(0), Scalar(0), Scalar(0)};
-    Index i = 0;
-    for (; i + 1 < m; i += 2) {  // two chains per column: a shorter dependency on the adds
-      const Scalar w0 = wc[i], w1 = wc[i + 1];
-      for (int b = 0; b < B; ++b) {
-        s[b] += numext::conj(lc[b][i]) * w0;
-        t[b] += numext::conj(lc[b][i + 1]) * w1;
-      }
-    }
-    if (i < m)
-      for (int b = 0; b < B; ++b) s[b] += numext::conj(lc[b][i]) * wc[i];
-    for (int b = 0; b < B; ++b) x[b + c * ldx] -= s[b] + t[b];
+    const Scalar* xs = X + node.firstCol + c * ldx;
+    Scalar* vc = v + c * nr;
+    for (Index i = 0; i < nc; ++i) vc[i] = xs[i];
+    for (Index i = nc; i < nr; ++i) vc[i] = Scalar(0);
   }
-}
-
-/** \internal W (m×K) := L21 X_S for a small supernode, four columns of L at a time. */
-template <int K, typename Scalar>
-void smallBelowProduct(Index m, Index nc, const Scalar* l21, Index ldl, const Scalar* xs, Index ldx, Scalar* w) {
   Index j = 0;
-  for (; j + 4 <= nc; j += 4) blockProduct<4, K>(j == 0, m, l21 + j * ldl, ldl, xs + j, ldx, w);
+  for (; j + 4 <= nc; j += 4) forwardColumnBlock<4, K>(nr, j, L, v);
   switch (nc - j) {
-    case 3: blockProduct<3, K>(j == 0, m, l21 + j * ldl, ldl, xs + j, ldx, w); break;
-    case 2: blockProduct<2, K>(j == 0, m, l21 + j * ldl, ldl, xs + j, ldx, w); break;
-    case 1: blockProduct<1, K>(j == 0, m, l21 + j * ldl, ldl, xs + j, ldx, w); break;
+    case 3: forwardColumnBlock<3, K>(nr, j, L, v); break;
+    case 2: forwardColumnBlock<2, K>(nr, j, L, v); break;
+    case 1: forwardColumnBlock<1, K>(nr, j, L, v); break;
     default: break;
   }
+  const StorageIndex* rows = node.rows.data();
+  for (int c = 0; c < K; ++c) {
+    Scalar* xc = X + c * ldx;
+    const Scalar* vc = v + c * nr;
+    for (Index i = 0; i < nc; ++i) xc[node.firstCol + i] = vc[i];
+    for (Index i = nc; i < nr; ++i) xc[rows[i]] += vc[i];
+  }
 }
 
-/** \internal X_S -= L21^H W for a small supernode, four columns of L at a time. */
-template <int K, typename Scalar>
-void smallBelowAdjointProduct(Index m, Index nc, const Scalar* l21, Index ldl, const Scalar* w, Scalar* xs,
-                              Index ldx) {
-  Index j = 0;
-  for (; j + 4 <= nc; j += 4) blockAdjointProduct<4, K>(m, l21 + j * ldl, ldl, w, xs + j, ldx);
-  switch (nc - j) {
-    case 3: blockAdjointProduct<3, K>(m, l21 + j * ldl, ldl, w, xs + j, ldx); break;
-    case 2: blockAdjointProduct<2, K>(m, l21 + j * ldl, ldl, w, xs + j, ldx); break;
-    case 1: blockAdjointProduct<1, K>(m, l21 + j * ldl, ldl, w, xs + j, ldx); break;
+/** \internal Backward pass over one small supernode with K right-hand sides: x_S and the
+  * gathered rows below in v, the column blocks from the last to the first, x_S written back. */
+template <int K, typename Scalar, typename StorageIndex>
+void backwardSmallSupernode(const Supernode<Scalar, StorageIndex>& node, Scalar* X, Index ldx, Scalar* v) {
+  const Index nr = node.nrows(), nc = node.ncols;
+  const Scalar* L = node.values.data();
+  const StorageIndex* rows = node.rows.data();
+  for (int c = 0; c < K; ++c) {
+    const Scalar* xc = X + c * ldx;
+    Scalar* vc = v + c * nr;
+    for (Index i = 0; i < nc; ++i) vc[i] = xc[node.firstCol + i];
+    for (Index i = nc; i < nr; ++i) vc[i] = xc[rows[i]];
+  }
+  const Index full = nc / 4 * 4;
+  switch (nc - full) {
+    case 3: backwardColumnBlock<3, K>(nr, full, L, v); break;
+    case 2: backwardColumnBlock<2, K>(nr, full, L, v); break;
+    case 1: backwardColumnBlock<1, K>(nr, full, L, v); break;
     default: break;
   }
-}
-
-/** \internal X_S := L11^{-1} X_S for a small diagonal block and K right-hand sides. */
-template <int K, typename Scalar>
-EIGEN_STRONG_INLINE void smallForwardTriangle(Index nc, const Scalar* l, Index ldl, Scalar* xs, Index ldx) {
-  for (Index j = 0; j < nc; ++j) {
-    const Scalar* lj = l + j * ldl;
-    for (int c = 0; c < K; ++c) {
-      Scalar* xc = xs + c * ldx;
-      const Scalar xj = (xc[j] /= lj[j]);
-      for (Index i = j + 1; i < nc; ++i) xc[i] -= lj[i] * xj;
-    }
+  for (Index j = full - 4; j >= 0; j -= 4) backwardColumnBlock<4, K>(nr, j, L, v);
+  for (int c = 0; c < K; ++c) {
+    Scalar* xs = X + node.firstCol + c * ldx;
+    const Scalar* vc = v + c * nr;
+    for (Index i = 0; i < nc; ++i) xs[i] = vc[i];
   }
 }
 
-/** \internal X_S := L11^{-H} X_S for a small diagonal block and K right-hand sides. */
-template <int K, typename Scalar>
-EIGEN_STRONG_INLINE void smallBackwardTriangle(Index nc, const Scalar* l, Index ldl, Scalar* xs, Index ldx) {
-  for (Index j = nc - 1; j >= 0; --j) {
-    const Scalar* lj = l + j * ldl;
-    for (int c = 0; c < K; ++c) {
-      Scalar* xc = xs + c * ldx;
-      Scalar sum = xc[j];
-      for (Index i = j + 1; i < nc; ++i) sum -= numext::conj(lj[i]) * xc[i];
-      xc[j] = sum / numext::conj(lj[j]);
-    }
-  }
-}
-
-/** \internal X := L^{-1} X for K ≤ InlineSolveRhs right-hand sides, one pass over L. */
+/** \internal X := L^{-1} X for K ≤ InlineSolveRhs right-hand sides, one pass over L.
+  * \a work holds maxRows()*K scalars. */
 template <int K, typename Scalar, typename StorageIndex>
 void forwardSolveFew(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Scalar* work) {
   const Index ns = f.count();
@@ -154,13 +158,13 @@ void forwardSolveFew(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X,
     const auto& node = f.nodes[s];
     if (s + 1 < ns) prefetchSupernode(f.nodes[s + 1]);
     const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+    if (nc <= SmallSolveColumns) {
+      forwardSmallSupernode<K>(node, X, ldx, work);
+      continue;
+    }
     const Scalar* L = node.values.data();
     Scalar* xs = X + node.firstCol;
-    if (nc <= SmallSolveColumns) {
-      smallForwardTriangle<K>(nc, L, nr, xs, ldx);
-      if (m == 0) continue;
-      smallBelowProduct<K>(m, nc, L + nc, nr, xs, ldx, work);
-    } else if (K == 1) {
+    if (K == 1) {
       trsvLower(false, nc, L, nr, xs);
       if (m == 0) continue;
       gemvProduct(false, m, nc, L + nc, nr, xs, work);
@@ -178,13 +182,18 @@ void forwardSolveFew(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X,
   }
 }
 
-/** \internal X := L^{-H} X for K ≤ InlineSolveRhs right-hand sides, one pass over L. */
+/** \internal X := L^{-H} X for K ≤ InlineSolveRhs right-hand sides, one pass over L.
+  * \a work holds maxRows()*K scalars. */
 template <int K, typename Scalar, typename StorageIndex>
 void backwardSolveFew(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Scalar* work) {
   for (Index s = f.count() - 1; s >= 0; --s) {
     const auto& node = f.nodes[s];
     if (s > 0) prefetchSupernode(f.nodes[s - 1]);
     const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+    if (nc <= SmallSolveColumns) {
+      backwardSmallSupernode<K>(node, X, ldx, work);
+      continue;
+    }
     const Scalar* L = node.values.data();
     Scalar* xs = X + node.firstCol;
     const StorageIndex* rows = node.rows.data() + nc;
@@ -193,10 +202,7 @@ void backwardSolveFew(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X
       Scalar* wc = work + c * m;
       for (Index i = 0; i < m; ++i) wc[i] = xc[rows[i]];
     }
-    if (nc <= SmallSolveColumns) {
-      if (m > 0) smallBelowAdjointProduct<K>(m, nc, L + nc, nr, work, xs, ldx);
-      smallBackwardTriangle<K>(nc, L, nr, xs, ldx);
-    } else if (K == 1) {
+    if (K == 1) {
       if (m > 0) gemvProduct(true, m, nc, L + nc, nr, work, xs);
       trsvLower(true, nc, L, nr, xs);
     } else {
@@ -206,7 +212,7 @@ void backwardSolveFew(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X
   }
 }
 
-/** \internal X := L^{-1} X for the k columns of X. \a work must hold maxBelow()*k scalars. */
+/** \internal X := L^{-1} X for the k columns of X. \a work must hold maxRows()*k scalars. */
 template <typename Scalar, typename StorageIndex>
 void forwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Index k, Scalar* work) {
   switch (k) {
@@ -232,7 +238,7 @@ void forwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, In
   }
 }
 
-/** \internal X := L^{-H} X for the k columns of X. \a work must hold maxBelow()*k scalars. */
+/** \internal X := L^{-H} X for the k columns of X. \a work must hold maxRows()*k scalars. */
 template <typename Scalar, typename StorageIndex>
 void backwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Index k, Scalar* work) {
   switch (k) {

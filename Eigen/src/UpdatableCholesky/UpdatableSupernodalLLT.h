@@ -253,7 +253,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   void solveInPlacePermuted(Matrix<Scalar, Dynamic, Dynamic>& x) const {
     const Index k = x.cols();
     if (m_n == 0 || k == 0) return;
-    std::vector<Scalar> work(m_maxBelow * k + 1);
+    std::vector<Scalar> work(m_factor.maxRows() * k + 1);
     internal::updatable_cholesky::forwardSolve(m_factor, x.data(), x.rows(), k, work.data());
     internal::updatable_cholesky::backwardSolve(m_factor, x.data(), x.rows(), k, work.data());
   }
