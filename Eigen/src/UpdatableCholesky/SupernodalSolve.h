@@ -23,8 +23,6 @@ namespace updatable_cholesky {
 /** \internal Supernodes up to this many columns are solved with the inline kernels (memory bound
   * there: as fast as BLAS and without its per-call cost); larger ones with BLAS-2/3. */
 enum { SmallSolveColumns = 128 };
-/** \internal Up to this many right-hand sides are solved by the inline kernels in one pass. */
-enum { InlineSolveRhs = 4 };
 /** \internal Bytes of the next supernode's block prefetched while the current one is solved. */
 enum { SolvePrefetchBytes = 4096 };
 
@@ -57,7 +55,22 @@ EIGEN_STRONG_INLINE void forwardColumnBlock(Index nr, Index j0, const Scalar* L,
       v[j0 + b + c * nr] = x[b][c];
     }
   }
-  for (Index i = j0 + B; i < nr; ++i)
+  typedef typename packet_traits<Scalar>::type Packet;
+  enum { Size = unpacket_traits<Packet>::size };
+  Packet xp[B][K];
+  for (int b = 0; b < B; ++b)
+    for (int c = 0; c < K; ++c) xp[b][c] = pset1<Packet>(x[b][c]);
+  Index i = j0 + B;
+  for (; i + Size <= nr; i += Size) {  // every entry of L is loaded once for the K right-hand sides
+    Packet lp[B];
+    for (int b = 0; b < B; ++b) lp[b] = ploadu<Packet>(l[b] + i);
+    for (int c = 0; c < K; ++c) {
+      Packet sum = pmul(lp[0], xp[0][c]);
+      for (int b = 1; b < B; ++b) sum = pmadd(lp[b], xp[b][c], sum);
+      pstoreu(v + i + c * nr, psub(ploadu<Packet>(v + i + c * nr), sum));
+    }
+  }
+  for (; i < nr; ++i)
     for (int c = 0; c < K; ++c) {
       Scalar sum = l[0][i] * x[0][c];
       for (int b = 1; b < B; ++b) sum += l[b][i] * x[b][c];
@@ -70,13 +83,27 @@ EIGEN_STRONG_INLINE void forwardColumnBlock(Index nr, Index j0, const Scalar* L,
   * the B columns once), then the B×B triangle L(block, block)^H is solved. */
 template <int B, int K, typename Scalar>
 EIGEN_STRONG_INLINE void backwardColumnBlock(Index nr, Index j0, const Scalar* L, Scalar* v) {
+  typedef typename packet_traits<Scalar>::type Packet;
+  enum { Size = unpacket_traits<Packet>::size };
   const Scalar* l[B];
-  Scalar sum[B][K];
+  Packet acc[B][K];
   for (int b = 0; b < B; ++b) {
     l[b] = L + (j0 + b) * nr;
-    for (int c = 0; c < K; ++c) sum[b][c] = Scalar(0);
+    for (int c = 0; c < K; ++c) acc[b][c] = pset1<Packet>(Scalar(0));
   }
-  for (Index i = j0 + B; i < nr; ++i)
+  Index i = j0 + B;
+  for (; i + Size <= nr; i += Size) {  // every entry of L is loaded once for the K right-hand sides
+    Packet lp[B];
+    for (int b = 0; b < B; ++b) lp[b] = pconj(ploadu<Packet>(l[b] + i));
+    for (int c = 0; c < K; ++c) {
+      const Packet w = ploadu<Packet>(v + i + c * nr);
+      for (int b = 0; b < B; ++b) acc[b][c] = pmadd(lp[b], w, acc[b][c]);
+    }
+  }
+  Scalar sum[B][K];
+  for (int b = 0; b < B; ++b)
+    for (int c = 0; c < K; ++c) sum[b][c] = predux(acc[b][c]);
+  for (; i < nr; ++i)
     for (int c = 0; c < K; ++c) {
       const Scalar w = v[i + c * nr];
       for (int b = 0; b < B; ++b) sum[b][c] += numext::conj(l[b][i]) * w;
@@ -149,66 +176,77 @@ void backwardSmallSupernode(const Supernode<Scalar, StorageIndex>& node, Scalar*
   }
 }
 
-/** \internal X := L^{-1} X for K ≤ InlineSolveRhs right-hand sides, one pass over L.
-  * \a work holds maxRows()*K scalars. */
+/** \internal Forward pass over one supernode with BLAS kernels, for any number k of right-hand
+  * sides (matrix-vector kernels for k = 1). \a work holds below()*k scalars. */
+template <typename Scalar, typename StorageIndex>
+void forwardLargeSupernode(const Supernode<Scalar, StorageIndex>& node, Scalar* X, Index ldx, Index k, Scalar* work) {
+  const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+  const Scalar* L = node.values.data();
+  Scalar* xs = X + node.firstCol;
+  if (k == 1) {
+    trsvLower(false, nc, L, nr, xs);
+    if (m == 0) return;
+    gemvProduct(false, m, nc, L + nc, nr, xs, work);
+  } else {
+    trsmLeftLower(false, nc, k, L, nr, xs, ldx);
+    if (m == 0) return;
+    gemmProduct(false, false, m, k, nc, L + nc, nr, xs, ldx, work, m);
+  }
+  const StorageIndex* rows = node.rows.data() + nc;
+  for (Index c = 0; c < k; ++c) {
+    Scalar* xc = X + c * ldx;
+    const Scalar* wc = work + c * m;
+    for (Index i = 0; i < m; ++i) xc[rows[i]] -= wc[i];
+  }
+}
+
+/** \internal Backward pass over one supernode with BLAS kernels, for any number k of
+  * right-hand sides. \a work holds below()*k scalars. */
+template <typename Scalar, typename StorageIndex>
+void backwardLargeSupernode(const Supernode<Scalar, StorageIndex>& node, Scalar* X, Index ldx, Index k, Scalar* work) {
+  const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+  const Scalar* L = node.values.data();
+  Scalar* xs = X + node.firstCol;
+  const StorageIndex* rows = node.rows.data() + nc;
+  for (Index c = 0; c < k; ++c) {
+    const Scalar* xc = X + c * ldx;
+    Scalar* wc = work + c * m;
+    for (Index i = 0; i < m; ++i) wc[i] = xc[rows[i]];
+  }
+  if (k == 1) {
+    if (m > 0) gemvProduct(true, m, nc, L + nc, nr, work, xs);
+    trsvLower(true, nc, L, nr, xs);
+  } else {
+    if (m > 0) gemmProduct(true, true, nc, k, m, L + nc, nr, work, m, xs, ldx);
+    trsmLeftLower(true, nc, k, L, nr, xs, ldx);
+  }
+}
+
+/** \internal X := L^{-1} X for K ≤ 4 right-hand sides (K = 0: any number k, BLAS
+  * kernels only), one pass over L. \a work holds maxRows()*k scalars. */
 template <int K, typename Scalar, typename StorageIndex>
-void forwardSolveFew(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Scalar* work) {
+void forwardSolvePass(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Index k, Scalar* work) {
   const Index ns = f.count();
   for (Index s = 0; s < ns; ++s) {
     const auto& node = f.nodes[s];
     if (s + 1 < ns) prefetchSupernode(f.nodes[s + 1]);
-    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
-    if (nc <= SmallSolveColumns) {
-      forwardSmallSupernode<K>(node, X, ldx, work);
-      continue;
-    }
-    const Scalar* L = node.values.data();
-    Scalar* xs = X + node.firstCol;
-    if (K == 1) {
-      trsvLower(false, nc, L, nr, xs);
-      if (m == 0) continue;
-      gemvProduct(false, m, nc, L + nc, nr, xs, work);
-    } else {
-      trsmLeftLower(false, nc, K, L, nr, xs, ldx);
-      if (m == 0) continue;
-      gemmProduct(false, false, m, K, nc, L + nc, nr, xs, ldx, work, m);
-    }
-    const StorageIndex* rows = node.rows.data() + nc;
-    for (int c = 0; c < K; ++c) {
-      Scalar* xc = X + c * ldx;
-      const Scalar* wc = work + c * m;
-      for (Index i = 0; i < m; ++i) xc[rows[i]] -= wc[i];
-    }
+    if (K > 0 && node.ncols <= SmallSolveColumns)
+      forwardSmallSupernode<(K > 0 ? K : 1)>(node, X, ldx, work);
+    else
+      forwardLargeSupernode(node, X, ldx, k, work);
   }
 }
 
-/** \internal X := L^{-H} X for K ≤ InlineSolveRhs right-hand sides, one pass over L.
-  * \a work holds maxRows()*K scalars. */
+/** \internal X := L^{-H} X, as forwardSolvePass in reverse. */
 template <int K, typename Scalar, typename StorageIndex>
-void backwardSolveFew(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Scalar* work) {
+void backwardSolvePass(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Index k, Scalar* work) {
   for (Index s = f.count() - 1; s >= 0; --s) {
     const auto& node = f.nodes[s];
     if (s > 0) prefetchSupernode(f.nodes[s - 1]);
-    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
-    if (nc <= SmallSolveColumns) {
-      backwardSmallSupernode<K>(node, X, ldx, work);
-      continue;
-    }
-    const Scalar* L = node.values.data();
-    Scalar* xs = X + node.firstCol;
-    const StorageIndex* rows = node.rows.data() + nc;
-    for (int c = 0; c < K; ++c) {
-      const Scalar* xc = X + c * ldx;
-      Scalar* wc = work + c * m;
-      for (Index i = 0; i < m; ++i) wc[i] = xc[rows[i]];
-    }
-    if (K == 1) {
-      if (m > 0) gemvProduct(true, m, nc, L + nc, nr, work, xs);
-      trsvLower(true, nc, L, nr, xs);
-    } else {
-      if (m > 0) gemmProduct(true, true, nc, K, m, L + nc, nr, work, m, xs, ldx);
-      trsmLeftLower(true, nc, K, L, nr, xs, ldx);
-    }
+    if (K > 0 && node.ncols <= SmallSolveColumns)
+      backwardSmallSupernode<(K > 0 ? K : 1)>(node, X, ldx, work);
+    else
+      backwardLargeSupernode(node, X, ldx, k, work);
   }
 }
 
@@ -216,25 +254,11 @@ void backwardSolveFew(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X
 template <typename Scalar, typename StorageIndex>
 void forwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Index k, Scalar* work) {
   switch (k) {
-    case 1: return forwardSolveFew<1>(f, X, ldx, work);
-    case 2: return forwardSolveFew<2>(f, X, ldx, work);
-    case 3: return forwardSolveFew<3>(f, X, ldx, work);
-    case 4: return forwardSolveFew<4>(f, X, ldx, work);
-    default: break;
-  }
-  for (const auto& node : f.nodes) {
-    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
-    const Scalar* L = node.values.data();
-    Scalar* xs = X + node.firstCol;
-    trsmLeftLower(false, nc, k, L, nr, xs, ldx);
-    if (m == 0) continue;
-    gemmProduct(false, false, m, k, nc, L + nc, nr, xs, ldx, work, m);
-    const StorageIndex* rows = node.rows.data() + nc;
-    for (Index c = 0; c < k; ++c) {
-      Scalar* xc = X + c * ldx;
-      const Scalar* wc = work + c * m;
-      for (Index i = 0; i < m; ++i) xc[rows[i]] -= wc[i];
-    }
+    case 1: return forwardSolvePass<1>(f, X, ldx, k, work);
+    case 2: return forwardSolvePass<2>(f, X, ldx, k, work);
+    case 3: return forwardSolvePass<3>(f, X, ldx, k, work);
+    case 4: return forwardSolvePass<4>(f, X, ldx, k, work);
+    default: return forwardSolvePass<0>(f, X, ldx, k, work);
   }
 }
 
@@ -242,27 +266,11 @@ void forwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, In
 template <typename Scalar, typename StorageIndex>
 void backwardSolve(const SupernodalFactor<Scalar, StorageIndex>& f, Scalar* X, Index ldx, Index k, Scalar* work) {
   switch (k) {
-    case 1: return backwardSolveFew<1>(f, X, ldx, work);
-    case 2: return backwardSolveFew<2>(f, X, ldx, work);
-    case 3: return backwardSolveFew<3>(f, X, ldx, work);
-    case 4: return backwardSolveFew<4>(f, X, ldx, work);
-    default: break;
-  }
-  for (Index s = f.count() - 1; s >= 0; --s) {
-    const auto& node = f.nodes[s];
-    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
-    const Scalar* L = node.values.data();
-    Scalar* xs = X + node.firstCol;
-    if (m > 0) {
-      const StorageIndex* rows = node.rows.data() + nc;
-      for (Index c = 0; c < k; ++c) {
-        const Scalar* xc = X + c * ldx;
-        Scalar* wc = work + c * m;
-        for (Index i = 0; i < m; ++i) wc[i] = xc[rows[i]];
-      }
-      gemmProduct(true, true, nc, k, m, L + nc, nr, work, m, xs, ldx);
-    }
-    trsmLeftLower(true, nc, k, L, nr, xs, ldx);
+    case 1: return backwardSolvePass<1>(f, X, ldx, k, work);
+    case 2: return backwardSolvePass<2>(f, X, ldx, k, work);
+    case 3: return backwardSolvePass<3>(f, X, ldx, k, work);
+    case 4: return backwardSolvePass<4>(f, X, ldx, k, work);
+    default: return backwardSolvePass<0>(f, X, ldx, k, work);
   }
 }
 
