@@ -245,7 +245,7 @@ TEST_CASE_TEMPLATE("Dirichlet solves with B empty, random and all; 1 to 5 right-
   std::shuffle(random.begin(), random.end(), g);
   random.resize(n / 5);
   const std::vector<int> none;
-  for (const std::vector<int>* B : {&none, &random, &all}) {
+  for (const std::vector<int>* B : std::initializer_list<const std::vector<int>*>{&none, &random, &all}) {
     CAPTURE(B->size());
     if (!B->empty()) llt.removeDofs(*B);
     REQUIRE(llt.info() == Eigen::Success);
