@@ -61,7 +61,7 @@ EIGEN_STRONG_INLINE void forwardColumnBlock(Index nr, Index j0, const Scalar* L,
   for (int b = 0; b < B; ++b)
     for (int c = 0; c < K; ++c) xp[b][c] = pset1<Packet>(x[b][c]);
   Index i = j0 + B;
-  for (; i + Size <= nr; i += Size) {  // every entry of L is loaded once for the K right-hand sides
+  for (; !NumTraits<Scalar>::IsComplex && i + Size <= nr; i += Size) {  // complex: scalar loop  // every entry of L is loaded once for the K right-hand sides
     Packet lp[B];
     for (int b = 0; b < B; ++b) lp[b] = ploadu<Packet>(l[b] + i);
     for (int c = 0; c < K; ++c) {
@@ -92,7 +92,7 @@ EIGEN_STRONG_INLINE void backwardColumnBlock(Index nr, Index j0, const Scalar* L
     for (int c = 0; c < K; ++c) acc[b][c] = pset1<Packet>(Scalar(0));
   }
   Index i = j0 + B;
-  for (; i + Size <= nr; i += Size) {  // every entry of L is loaded once for the K right-hand sides
+  for (; !NumTraits<Scalar>::IsComplex && i + Size <= nr; i += Size) {  // complex: scalar loop  // every entry of L is loaded once for the K right-hand sides
     Packet lp[B];
     for (int b = 0; b < B; ++b) lp[b] = pconj(ploadu<Packet>(l[b] + i));
     for (int c = 0; c < K; ++c) {
