@@ -25,6 +25,7 @@
 #include <unsupported/Eigen/MeshTools>
 
 #include "BenchReport.h"
+#include "SeamBenchOptions.h"
 #include "CholmodPeer.h"
 #include "FixedOrdering.h"
 #include "RowdelPeer.h"
@@ -278,86 +279,10 @@ void extractReduced(const SpMat& A, const Permutation& perm, const std::vector<c
 
 // ---- command line -------------------------------------------------------------------------------
 
-struct Options
-{
-  std::vector<std::string> meshes;
-  int grid = 0;
-  std::vector<int> lengths{1, 5, 20, 100, 500, 2000};
-  int seams = 5, threads = 1;
-  unsigned seed = 20240611u;
-  std::string csvDir;
-  bool smoke = false;
-};
+using Options = bench::SeamBenchOptions;
 
-void printUsage()
-{
-  std::cout
-      << "usage: bench_remove_dofs [--mesh=PATH[,PATH...]]... [--grid=N] [--lengths=1,5,20,100,500,2000]\n"
-         "                         [--seams=5] [--threads=1] [--seed=S] [--csv-dir=DIR] [--smoke]\n"
-         "  --mesh=PATH     OFF mesh, plain or gzip; repeatable or comma-separated (default: " UC_BENCH_DEFAULT_MESH ")\n"
-         "  --grid=N        a generated N x N planar grid instead\n"
-         "  --lengths=LIST  seam lengths in vertices (default 1,5,20,100,500,2000)\n"
-         "  --seams=N       seams per length; medians are over them (default 5)\n"
-         "  --threads=N     threads of every solver: ours setThreadCount, OpenBLAS for CHOLMOD (default 1)\n"
-         "  --seed=S        base seed of the seams (default 20240611)\n"
-         "  --csv-dir=DIR   write remove_dofs_<mesh>.csv (medians), _samples.csv and _setup.csv there;\n"
-         "                  plot with bench/plot_remove_dofs.sh DIR\n"
-         "  --smoke         tiny grid, l = 1,5, one seam: a quick correctness run for CI\n";
-}
-
-bool parseOptions(int argc, char** argv, Options& o)
-{
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string arg = argv[i];
-    const std::string::size_type eq = arg.find('=');
-    const std::string key = arg.substr(0, eq), value = eq == std::string::npos ? std::string() : arg.substr(eq + 1);
-    bool good = true;
-    auto splitList = [&](const std::function<bool(const std::string&)>& take) { good = bench::forEachListItem(value, take); };
-    if (key == "--mesh") splitList([&](const std::string& s) { o.meshes.push_back(s); return true; });
-    else if (key == "--grid") good = parseInt(value, o.grid) && o.grid >= 2;
-    else if (key == "--lengths")
-    {
-      o.lengths.clear();
-      splitList([&](const std::string& s) {
-        int l = 0;
-        o.lengths.push_back(l);
-        return parseInt(s, o.lengths.back()) && o.lengths.back() >= 1;
-      });
-    }
-    else if (key == "--seams") good = parseInt(value, o.seams) && o.seams >= 1;
-    else if (key == "--threads") good = parseInt(value, o.threads) && o.threads >= 1;
-    else if (key == "--seed")
-    {
-      int s = 0;
-      good = parseInt(value, s);
-      o.seed = unsigned(s);
-    }
-    else if (key == "--csv-dir" && !value.empty()) o.csvDir = value;
-    else if (key == "--smoke" && eq == std::string::npos) o.smoke = true;
-    else if (key == "--help" || key == "-h")
-    {
-      printUsage();
-      std::exit(0);
-    }
-    else good = false;
-    if (!good)
-    {
-      std::cerr << "bench_remove_dofs: bad argument '" << arg << "'\n";
-      printUsage();
-      return false;
-    }
-  }
-  if (o.smoke)
-  {
-    o.meshes.clear();
-    o.grid = 24;
-    o.lengths = {1, 5};
-    o.seams = 1;
-  }
-  if (o.meshes.empty() && o.grid == 0) o.meshes.push_back(UC_BENCH_DEFAULT_MESH);
-  return true;
-}
+/** This benchmark's names on the shared command line (SeamBenchOptions.h). */
+const bench::SeamBenchNames kNames{"bench_remove_dofs", "remove_dofs", "bench/plot_remove_dofs.sh", UC_BENCH_DEFAULT_MESH};
 
 // ---- one mesh -----------------------------------------------------------------------------------
 
@@ -803,7 +728,7 @@ private:
 int main(int argc, char** argv)
 {
   Options options;
-  if (!parseOptions(argc, argv, options)) return 2;
+  if (!bench::parseSeamBenchOptions(argc, argv, kNames, options)) return 2;
   if (openblas_set_num_threads) openblas_set_num_threads(options.threads);
 
   std::printf("bench_remove_dofs: %s\n", options.smoke ? "SMOKE run (tiny grid, l = 1,5, one seam)"
