@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
   g.col(2).array() += 0.05 * extent;
 
   std::printf("%-20s %8s %8s | %10s %10s %10s | %8s %8s | %s\n", "edit", "+dofs", "-dofs", "ours ms", "refact ms",
-              "scratch ms", "refact/o", "scratch/o", "route (ours)");
+              "scratch ms", "refact/o", "scratch/o", "route (ours)    flops: ours refact (fraction of a full factorization, last call)");
   bool allRight = true;
   std::vector<char> current(std::size_t(V.rows()), 0);
   for (const Step& step : session) {
@@ -229,12 +229,13 @@ int main(int argc, char** argv) {
       case Eigen::UpdateRoute::PartialRefactorization: route = "partial"; break;
       case Eigen::UpdateRoute::Refactorization: route = "refactorization"; break;
       case Eigen::UpdateRoute::LowRank: route = "low-rank"; break;
+      case Eigen::UpdateRoute::Mixed: route = "mixed"; break;
       default: break;
     }
-    std::printf("%-20s %8zu %8zu | %10.2f %10.2f %10.2f | %8.2f %8.2f | %s%s\n", step.name.c_str(), added.size(),
-                released.size(), oursMs.median(), forcedMs.median(), scratchMs.median(),
+    std::printf("%-20s %8zu %8zu | %10.2f %10.2f %10.2f | %8.2f %8.2f | %-15s %7.3f %7.3f%s\n", step.name.c_str(),
+                added.size(), released.size(), oursMs.median(), forcedMs.median(), scratchMs.median(),
                 forcedMs.median() / oursMs.median(), scratchMs.median() / oursMs.median(), route,
-                right ? "" : "  WRONG");
+                ours.lastUpdate().flopFraction, forced.lastUpdate().flopFraction, right ? "" : "  WRONG");
     current = step.constrained;
   }
 

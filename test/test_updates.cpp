@@ -182,6 +182,72 @@ TEST_CASE_TEMPLATE("partial refactorization is bitwise a fresh factorization", C
   CHECK(sameFactorBitwise<Cfg>(llt, original));
 }
 
+TEST_CASE_TEMPLATE("removing most dofs: reduced fronts (paper 6.5)", Cfg, UC_CORE_CONFIGS) {
+  typedef typename Cfg::Scalar Scalar;
+  typedef Eigen::UpdatableSupernodalLLT<typename Cfg::MatrixType, Cfg::UpLo, GivenOrdering<typename Cfg::StorageIndex>> Fresh;
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  Eigen::gridMesh(36, 30, V, F);
+  typename Cfg::FullMatrix A = Eigen::cotanLaplacian<Scalar, typename Cfg::StorageIndex>(V, F);
+  for (Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += Scalar(1e-2);
+  A.makeCompressed();
+  const Index n = A.rows();
+  const double x0 = V.col(0).minCoeff(), x1 = V.col(0).maxCoeff();
+  // a region of 70% of the mesh, and a band that cuts the mesh into two pieces
+  for (const auto& region : {std::make_pair(-1.0, 0.7), std::make_pair(0.25, 0.75)}) {
+    std::vector<int> dofs;
+    std::vector<char> removed(n, 0);
+    for (Index i = 0; i < n; ++i) {
+      const double t = (V(i, 0) - x0) / (x1 - x0);
+      if (t > region.first && t < region.second) {
+        dofs.push_back(int(i));
+        removed[i] = 1;
+      }
+    }
+    CAPTURE(region.first);
+    const typename Cfg::FullMatrix current = withIdentityRows<Cfg>(A, removed);
+    double forcedFlops = 0;
+    for (Eigen::UpdateRoute route : {Eigen::UpdateRoute::Refactorization, Eigen::UpdateRoute::PartialRefactorization,
+                                     Eigen::UpdateRoute::Automatic}) {
+      typename Cfg::Solver llt;
+      llt.setThreadCount(1);
+      llt.compute(toInput<Cfg>(A));
+      REQUIRE(llt.info() == Eigen::Success);
+      llt.setUpdateRoute(route);
+      llt.removeDofs(dofs);
+      REQUIRE(llt.info() == Eigen::Success);
+      const Eigen::UpdateStatistics& st = llt.lastUpdate();
+      Fresh fresh;
+      fresh.ordering().pinv = llt.permutationPinv();
+      fresh.setThreadCount(1);
+      fresh.compute(toInput<Cfg>(current));
+      REQUIRE(fresh.info() == Eigen::Success);
+      const bool exact = st.route == Eigen::UpdateRoute::PartialRefactorization || st.route == Eigen::UpdateRoute::Refactorization;
+      CHECK(factorDifference<Cfg>(llt, fresh) <= (exact ? exactTolerance<Cfg>() : lowRankTolerance<Cfg>()));
+      if (route == Eigen::UpdateRoute::Refactorization) {
+        // the supernodes are factored on their kept rows and columns: far less than a full factorization
+        CHECK(st.route == Eigen::UpdateRoute::Refactorization);
+        CHECK(st.flopFraction > 0);
+        CHECK(st.flopFraction < 0.5);
+        forcedFlops = st.flops;
+      }
+      if (route == Eigen::UpdateRoute::Automatic) CHECK(st.flops <= forcedFlops * (1 + 1e-12));
+      std::mt19937 g(5);
+      const typename Cfg::Dense b = randomDense<Cfg>(n, 2, g);
+      const typename Cfg::Dense x = llt.solve(b);
+      CHECK(double((current * x - b).norm() / b.norm()) <= lowRankTolerance<Cfg>());
+      // and back: the original factor
+      llt.restoreDofs(dofs);
+      REQUIRE(llt.info() == Eigen::Success);
+      Fresh original;
+      original.ordering().pinv = llt.permutationPinv();
+      original.setThreadCount(1);
+      original.compute(toInput<Cfg>(A));
+      CHECK(factorDifference<Cfg>(llt, original) <= lowRankTolerance<Cfg>());
+    }
+  }
+}
+
 TEST_CASE_TEMPLATE("Dirichlet solves", Cfg, UC_CORE_CONFIGS) {
   typedef typename Cfg::Dense Dense;
   const typename Cfg::FullMatrix A = testLaplacian<Cfg>(1);

@@ -16,7 +16,7 @@
 //
 // Everything here works in the permuted numbering of the factor. A relabeling maps each old
 // permuted column to its new position (or -1 when merged away) and says how many copies follow
-// it; the factor's previous row lists, values, relative positions and assembly maps are kept
+// it; the factor's previous row lists, values, and relative positions are kept
 // aside (moved, not copied) so that a failed update can put them back.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_DOF_INSERTION_H
@@ -62,7 +62,6 @@ struct FactorStructureBackup {
   std::vector<StorageIndex> colToSuper;
   std::vector<Index> firstCol, ncols;
   std::vector<std::vector<StorageIndex> > rows, parentPosition;  ///< dirty supernodes only
-  std::vector<std::vector<Index> > assemblySource, assemblyTarget;
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > values;          ///< dirty supernodes only
   std::vector<std::vector<Scalar> > cache;                        ///< dirty supernodes only
 };
@@ -71,7 +70,7 @@ struct FactorStructureBackup {
   * (merged rows dropped, copies inserted after their origins) and lose their values and cached
   * update matrix (moved into \a backup, to be recomputed); clean ones are renumbered in place.
   * Recomputes first columns, column counts, colToSuper and the relative positions of the
-  * children of dirty supernodes. The assembly maps are moved into \a backup (rebuild them). */
+  * children of dirty supernodes. The assembly maps stay as they are (see remapAssemblyMaps()). */
 template <typename Scalar, typename StorageIndex>
 void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::vector<Scalar> >& cache,
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
@@ -83,16 +82,12 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
   backup.ncols.resize(ns);
   backup.rows.assign(ns, std::vector<StorageIndex>());
   backup.parentPosition.assign(ns, std::vector<StorageIndex>());
-  backup.assemblySource.assign(ns, std::vector<Index>());
-  backup.assemblyTarget.assign(ns, std::vector<Index>());
   backup.values.assign(ns, Matrix<Scalar, Dynamic, Dynamic>());
   backup.cache.assign(ns, std::vector<Scalar>());
   for (Index s = 0; s < ns; ++s) {
     auto& node = f.nodes[s];
     backup.firstCol[s] = node.firstCol;
     backup.ncols[s] = node.ncols;
-    backup.assemblySource[s].swap(node.assemblySource);
-    backup.assemblyTarget[s].swap(node.assemblyTarget);
     if (!mark[s]) {
       for (auto& r : node.rows) r = relabel.newPosition[r];
     } else {
@@ -131,8 +126,8 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
   }
 }
 
-/** \internal Undoes relabelFactor(): puts back the structure, the assembly maps and the dirty
-  * supernodes' values and cached update matrices. */
+/** \internal Undoes relabelFactor(): puts back the structure and the dirty supernodes' values
+  * and cached update matrices (not the assembly maps: the caller rebuilds them). */
 template <typename Scalar, typename StorageIndex>
 void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::vector<Scalar> >& cache,
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
@@ -142,8 +137,6 @@ void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
     auto& node = f.nodes[s];
     node.firstCol = backup.firstCol[s];
     node.ncols = backup.ncols[s];
-    node.assemblySource.swap(backup.assemblySource[s]);
-    node.assemblyTarget.swap(backup.assemblyTarget[s]);
     if (!mark[s]) {
       for (auto& r : node.rows) r = relabel.oldPosition[r];
     } else {

@@ -48,13 +48,14 @@ template <typename Scalar>
 struct UpdateWorkspace {
   typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
   std::vector<char> mark;                                   ///< dirty marks
-  std::vector<Index> rank, local;                           ///< per-supernode ranks (cost model)
+  std::vector<Index> rank, local, first;                    ///< per-supernode ranks, first columns (cost model)
   std::vector<double> cost;                                 ///< per-supernode low-rank flops (cost model)
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carried;   ///< W passed to the parent
   void resize(Index supernodes) {
     mark.assign(supernodes, 0);
     rank.assign(supernodes, 0);
     local.assign(supernodes, 0);
+    first.assign(supernodes, 0);
     cost.assign(supernodes, 0.0);
     carried.clear();
     carried.resize(supernodes);
@@ -114,11 +115,25 @@ std::vector<Index> dirtySupernodes(const SupernodalFactor<Scalar, StorageIndex>&
   return dirty;
 }
 
-/** \internal Dense flops of recomputing the given supernodes. */
+/** \internal Dense flops of recomputing the given supernodes (reduced fronts counted on their
+  * kept rows and columns when \a removed, flags by permuted column, is given). */
 template <typename Scalar, typename StorageIndex>
-double supernodeFlops(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& nodes) {
+double supernodeFlops(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& nodes,
+                      const char* removed = nullptr) {
   double flops = 0;
-  for (Index s : nodes) flops += f.nodes[s].flops();
+  for (Index s : nodes) flops += frontFlops(f.nodes[s], removed);
+  return flops;
+}
+
+/** \internal Dense flops of a full refactorization: \a total (all fronts whole) while few dofs are
+  * removed, else counted with the reduced fronts (\a removed flags by permuted column, \a count
+  * of them set). */
+template <typename Scalar, typename StorageIndex>
+double refactorizationFlops(const SupernodalFactor<Scalar, StorageIndex>& f, double total, const char* removed,
+                            Index count) {
+  if (!removed || 8 * count < f.n) return total;
+  double flops = 0;
+  for (const auto& node : f.nodes) flops += frontFlops(node, removed);
   return flops;
 }
 

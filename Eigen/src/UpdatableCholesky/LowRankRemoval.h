@@ -42,19 +42,19 @@ double lowRankRemovalFlops(const SupernodalFactor<Scalar, StorageIndex>& f, cons
                            const std::vector<StorageIndex>& removedNow, UpdateWorkspace<Scalar>& ws) {
   std::vector<Index>& rankOut = ws.rank;
   std::vector<Index>& local = ws.local;
-  for (StorageIndex b : removedNow) ++local[f.colToSuper[b]];
+  std::vector<Index>& first = ws.first;  // per supernode, its first column removed now
+  for (StorageIndex b : removedNow) {
+    const Index s = f.colToSuper[b], k = Index(b) - f.nodes[s].firstCol;
+    first[s] = local[s]++ == 0 ? k : (std::min)(first[s], k);
+  }
   double total = 0;
   for (Index s : dirty) {
     double flops = 0;
     const auto& node = f.nodes[s];
     const double nr = double(node.nrows()), nc = double(node.ncols), m = double(node.below());
     Index rank = local[s];
-    if (local[s] > 0) {  // own removed columns start below the first of them
-      Index first = node.ncols;
-      for (StorageIndex b : removedNow)
-        if (f.colToSuper[b] == s) first = (std::min)(first, Index(b) - node.firstCol);
-      flops += foldFlops(double(local[s]), nr, nc, double(first + 1));
-    }
+    if (local[s] > 0)  // own removed columns start below the first of them
+      flops += foldFlops(double(local[s]), nr, nc, double(first[s] + 1));
     for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) {
       if (rankOut[c] == 0) continue;
       rank += rankOut[c];
@@ -73,10 +73,12 @@ double lowRankRemovalFlops(const SupernodalFactor<Scalar, StorageIndex>& f, cons
   * split into a lower part updated by low-rank folds and a top part (closed under taking parents)
   * refactored from the cached update matrices, which the folds keep valid. A dynamic program over
   * the dirty tree, from the per-supernode low-rank costs in ws.cost (lowRankRemovalFlops()) and the
-  * recomputation costs. Fills \a lowPart and \a topPart (increasing); \returns the flops. */
+  * recomputation costs (reduced fronts counted on their kept rows and columns, \a removed: flags
+  * by permuted column or null). Fills \a lowPart and \a topPart (increasing); \returns the flops. */
 template <typename Scalar, typename StorageIndex>
 double mixedRemovalPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& dirty,
-                        UpdateWorkspace<Scalar>& ws, std::vector<Index>& lowPart, std::vector<Index>& topPart) {
+                        UpdateWorkspace<Scalar>& ws, std::vector<Index>& lowPart, std::vector<Index>& topPart,
+                        const char* removed) {
   const Index count = Index(dirty.size());
   std::vector<double> lowRank(count, 0.0), best(count, 0.0), lowRankBelow(count, 0.0), bestBelow(count, 0.0);
   std::vector<char> recompute(count, 0);
@@ -86,7 +88,7 @@ double mixedRemovalPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const s
   for (Index k = 0; k < count; ++k) {  // children before parents
     const Index s = dirty[k];
     lowRank[k] = ws.cost[s] + lowRankBelow[k];
-    const double again = f.nodes[s].flops() + bestBelow[k];
+    const double again = frontFlops(f.nodes[s], removed) + bestBelow[k];
     recompute[k] = again < lowRank[k];
     best[k] = recompute[k] ? again : lowRank[k];
     const Index p = f.parent[s];

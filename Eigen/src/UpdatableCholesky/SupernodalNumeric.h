@@ -97,6 +97,8 @@ template <typename Scalar>
 struct UpdateStack {
   std::vector<Scalar> buffer;
   Index top = 0;
+  std::vector<Scalar> front, update;  ///< scratch of a reduced front (kept rows and columns only)
+  std::vector<Index> kept;            ///< its rows in the supernode
   Index push(Index size) {
     const Index offset = top;
     top += size;
@@ -104,6 +106,34 @@ struct UpdateStack {
     return offset;
   }
 };
+
+/** \internal The rows of \a node whose dofs are not removed go to \a kept; true when the supernode
+  * is factored on those alone (a reduced front: a quarter or more of its rows removed). */
+template <typename Scalar, typename StorageIndex>
+bool isReduced(const Supernode<Scalar, StorageIndex>& node, const char* removed, std::vector<Index>& kept) {
+  kept.clear();
+  const Index nr = node.nrows();
+  for (Index k = 0; k < nr; ++k)
+    if (!removed[node.rows[k]]) kept.push_back(k);
+  return 4 * (nr - Index(kept.size())) >= nr;
+}
+
+/** \internal Dense flops of factoring \a node, on its kept rows and columns when it is a reduced
+  * front (\a removed: flags by permuted column, or null). */
+template <typename Scalar, typename StorageIndex>
+double frontFlops(const Supernode<Scalar, StorageIndex>& node, const char* removed) {
+  if (!removed) return node.flops();
+  const Index nr = node.nrows();
+  Index kr = 0, kc = 0;
+  for (Index k = 0; k < nr; ++k)
+    if (!removed[node.rows[k]]) {
+      ++kr;
+      kc += k < node.ncols;
+    }
+  if (4 * (nr - kr) < nr) return node.flops();
+  const double c = double(kc), b = double(kr - kc);
+  return c * c * c / 3.0 + b * c * c + b * b * c;
+}
 
 /** \internal What a numeric factorization reads: the input's value array, the shift of the
   * diagonal (d_ii -> offset + scale*d_ii, as Eigen's setShift), and optionally the removed (Dirichlet) dofs in the permuted numbering,
@@ -336,7 +366,7 @@ class SupernodalNumeric {
     m_location[s].stack = stackId;
     m_location[s].offset = uOffset;
     // 3. dense factorization of the front
-    const Index bad = potrf(nc, L, nr);
+    const Index bad = factorFront(node, L, U, in, stackId);
     if (bad >= 0) {
       Index expected = -1;
       const Index col = node.firstCol + bad;
@@ -344,11 +374,56 @@ class SupernodalNumeric {
       }
       return false;
     }
+    return true;
+  }
+
+  /** Dense factorization of the assembled front (nr × nc block L, update matrix U below):
+    * L11 = chol, L21 = L21 L11^{-H}, U -= L21 L21^H. When a quarter or more of its rows belong
+    * to removed dofs (zero rows, unit columns: paper §5.3), the kept rows and columns are
+    * gathered into a compact front first, so that the work is that of the reduced system A_II
+    * (paper §6.5) rather than of the whole supernode. \returns -1 or the local column of a bad
+    * pivot. */
+  Index factorFront(const Node& node, Scalar* L, Scalar* U, const Input& in, Index stackId) {
+    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+    if (in.removed && isReduced(node, in.removed, m_stacks[stackId].kept)) {
+      UpdateStack<Scalar>& ws = m_stacks[stackId];
+      const std::vector<Index>& kept = ws.kept;
+      const Index kr = Index(kept.size());
+      Index kc = 0;
+      while (kc < kr && kept[kc] < nc) ++kc;
+      const Index km = kr - kc;
+      if (kc == 0) return -1;  // only unit columns: the children's updates pass through U unchanged
+      ws.front.assign(kr * kc, Scalar(0));
+      Scalar* F = ws.front.data();
+      for (Index j = 0; j < kc; ++j) {
+        const Scalar* col = L + kept[j] * nr;
+        for (Index i = j; i < kr; ++i) F[j * kr + i] = col[kept[i]];
+      }
+      const Index bad = potrf(kc, F, kr);
+      if (bad >= 0) return kept[bad];
+      if (km > 0) trsmRightLowerAdjoint(km, kc, F, kr, F + kc, kr);
+      for (Index j = 0; j < kc; ++j) {
+        Scalar* col = L + kept[j] * nr;
+        for (Index i = j; i < kr; ++i) col[kept[i]] = F[j * kr + i];
+      }
+      if (km > 0) {
+        ws.update.assign(km * km, Scalar(0));
+        Scalar* T = ws.update.data();
+        herkLower(km, kc, RealScalar(-1), F + kc, kr, T, km);
+        for (Index j = 0; j < km; ++j) {
+          Scalar* dst = U + (kept[kc + j] - nc) * m - nc;
+          for (Index i = j; i < km; ++i) dst[kept[kc + i]] += T[j * km + i];
+        }
+      }
+      return -1;
+    }
+    const Index bad = potrf(nc, L, nr);
+    if (bad >= 0) return bad;
     if (m > 0) {
       trsmRightLowerAdjoint(m, nc, L, nr, L + nc, nr);
       herkLower(m, nc, RealScalar(-1), L + nc, nr, U, m);
     }
-    return true;
+    return -1;
   }
 
   /** Adds the child's update matrix (lower triangle, m×m) into the parent's block and update

@@ -254,9 +254,10 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   const UpdateStatistics& lastUpdate() const { return m_lastUpdate; }
   //@}
 
-  /** \returns the bytes held by the factor (values and row indices) and its workspace. */
+  /** \returns the bytes held by the factor (values and row indices) and its workspace (including
+    * the scratch and spare buffers that insertDofs()/mergeDofs() keep between calls). */
   Index memoryBytes() const {
-    Index b = m_numeric.workspaceBytes();
+    Index b = m_numeric.workspaceBytes() + m_inputDiff.bytes();
     for (const auto& node : m_factor.nodes)
       b += Index(node.values.size() * sizeof(Scalar) + node.rows.capacity() * sizeof(StorageIndex) +
                  node.parentPosition.capacity() * sizeof(StorageIndex) +
@@ -331,6 +332,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   UpdateRoute m_route = UpdateRoute::Automatic;
   UpdateStatistics m_lastUpdate;
   internal::updatable_cholesky::UpdateWorkspace<Scalar> m_workspace;
+  internal::updatable_cholesky::InputDiff<Scalar, StorageIndex> m_inputDiff;  ///< scratch of insertDofs/mergeDofs
   double m_totalFlops = 0;
 
   internal::updatable_cholesky::NumericInput<Scalar> numericInput() const {
@@ -366,7 +368,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     bool merging = false;
   };
   void replaceDofs(const MatrixType& matrix, DofChange& change);
-  /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty. */
+  /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty and spent
+    * \a flops (all of a refactorization's, reduced fronts counted on their kept rows). */
   void recordUpdate(UpdateRoute route, Index changedColumns, const std::vector<Index>& dirty, double flops,
                     std::chrono::steady_clock::time_point start) {
     UpdateStatistics& st = m_lastUpdate;
@@ -377,7 +380,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     st.dirtyColumns = all ? m_n : 0;
     if (!all)
       for (Index s : dirty) st.dirtyColumns += m_factor.nodes[s].ncols;
-    st.flops = all ? m_totalFlops : flops;
+    st.flops = flops;
     st.flopFraction = m_totalFlops > 0 ? st.flops / m_totalFlops : 0;
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
@@ -539,7 +542,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   const auto start = std::chrono::steady_clock::now();
   m_sparseLIsValid = false;
   const std::vector<Index> dirty = dirtySupernodes(m_factor, m_upper, permutedColumns, m_workspace);
-  const double totalFlops = m_totalFlops, dirtyFlops = supernodeFlops(m_factor, dirty);
+  const char* removedFlags = m_removedList.empty() ? nullptr : m_removedPermuted.data();
+  const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
+  const double dirtyFlops = supernodeFlops(m_factor, dirty, removedFlags);
   UpdateRoute route = m_route;
   if ((route == UpdateRoute::LowRank || route == UpdateRoute::Mixed) && !isRemoval) route = UpdateRoute::Automatic;
   if (!m_numeric.hasCachedUpdates()) route = UpdateRoute::Refactorization;
@@ -547,7 +552,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   std::vector<Index> lowPart, topPart;
   if (isRemoval && (route == UpdateRoute::Automatic || route == UpdateRoute::Mixed)) {
     lowRankRemovalFlops(m_factor, dirty, permutedColumns, m_workspace);  // per-supernode costs
-    mixedFlops = mixedRemovalPlan(m_factor, dirty, m_workspace, lowPart, topPart);
+    mixedFlops = mixedRemovalPlan(m_factor, dirty, m_workspace, lowPart, topPart, removedFlags);
   }
   if (route == UpdateRoute::Automatic) {  // the full factorization runs on all threads
     const double full = totalFlops / threadCount();
@@ -565,7 +570,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   if (route == UpdateRoute::Mixed) {  // folds below, then the top refactored from the caches they keep valid
     double flops = lowRankRemoval(m_factor, m_numeric, lowPart, m_removedPermuted.data(), m_workspace);
     for (Index s : lowPart) m_workspace.carried[s] = typename UpdateWorkspace<Scalar>::Dense();
-    flops += supernodeFlops(m_factor, topPart);
+    flops += supernodeFlops(m_factor, topPart, removedFlags);
     const Index bad = m_numeric.refactorize(m_factor, numericInput(), topPart, threadCount());
     m_info = Success;
     if (bad >= 0) {  // (not expected for a removal, e.g. NaN) the previous matrix and a full factorization
@@ -593,7 +598,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   } else {
     m_info = Success;
   }
-  recordUpdate(route, Index(permutedColumns.size()), dirty, dirtyFlops, start);
+  recordUpdate(route, Index(permutedColumns.size()), dirty,
+               route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops, start);
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
@@ -779,14 +785,15 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   MatrixType copy;
   const MatrixType* pa = compressedInput(a, copy);
   const Index n = m_n, total = pa->rows();
-  const bool rowMajor = bool(MatrixType::IsRowMajor);
+  constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
   auto kept = [](Index row, Index col) { return UpLo_ == Lower ? row >= col : row <= col; };
   const StorageIndex* outer = pa->outerIndexPtr();
   const StorageIndex* inner = pa->innerIndexPtr();
   const Scalar* values = pa->valuePtr();
   const StorageIndex* perm = m_P.indices().data();
 
-  // 1. Compare with the current matrix (changed dofs) and check the pattern of the new entries.
+  // 1. Compare with the current matrix (changed dofs, where the kept entries move, the entries
+  //    it lacks) and check the pattern of the new entries.
   auto foldAllowed = [&](Index x, Index y) {
     for (Index p = change.preStart[x]; p < change.preStart[x + 1]; ++p)
       for (Index q = change.preStart[y]; q < change.preStart[y + 1]; ++q) {
@@ -795,52 +802,17 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       }
     return false;
   };
-  std::vector<char> changed(n, 0);
-  std::vector<Index> stamp(n, -1);  // >= 0: position of a current entry not yet matched; -2: matched
-  bool ok = true;
-  for (Index x = 0; x < total && ok; ++x) {
-    const Index ox = change.oldOfNew[x];
-    if (ox >= 0)
-      for (Index p = m_pattern.outer[ox]; p < m_pattern.outer[ox + 1]; ++p) {
-        const Index y = m_pattern.inner[p];
-        if (kept(rowMajor ? ox : y, rowMajor ? y : ox)) stamp[y] = p;
-      }
-    for (Index p = outer[x]; p < outer[x + 1]; ++p) {
-      const Index y = inner[p];
-      if (!kept(rowMajor ? x : y, rowMajor ? y : x)) continue;
-      const Index oy = change.oldOfNew[y];
-      if (ox >= 0 && oy >= 0 && stamp[oy] >= 0) {
-        if (!(values[p] == m_values[stamp[oy]])) changed[ox] = changed[oy] = 1;
-        stamp[oy] = -2;
-        continue;
-      }
-      if (x != y && !foldAllowed(x, y)) {
-        ok = false;
-        break;
-      }
-      if (ox >= 0) changed[ox] = 1;
-      if (oy >= 0) changed[oy] = 1;
-    }
-    if (ox >= 0)
-      for (Index p = m_pattern.outer[ox]; p < m_pattern.outer[ox + 1]; ++p) {
-        const Index y = m_pattern.inner[p];
-        if (stamp[y] >= 0) changed[ox] = changed[y] = 1;  // an entry that is gone
-        stamp[y] = -1;
-      }
+  InputDiff<Scalar, StorageIndex>& diff = m_inputDiff;
+  bool ok = diffInput<UpLo_, rowMajor>(m_pattern, m_values.data(), outer, inner, values, total, change.oldOfNew,
+                                       change.newOfOld, diff, foldAllowed);
+  const std::vector<char>& changed = diff.changed;
+  // 2. A merge keeps the structure: it must hold every entry the current matrix lacks.
+  for (Index k = 0; k < Index(diff.fresh.size()) && ok && change.merging; ++k) {
+    const Index x = diff.freshOuter[k], y = inner[diff.fresh[k]];
+    if (x == y) continue;
+    const Index px = perm[change.oldOfNew[x]], py = perm[change.oldOfNew[y]];
+    ok = structureHolds(m_factor, (std::max)(px, py), (std::min)(px, py));
   }
-  for (Index o = 0; o < n && ok; ++o) {  // merged dofs: every entry of theirs is gone
-    if (change.newOfOld[o] >= 0) continue;
-    changed[o] = 1;
-    for (Index p = m_pattern.outer[o]; p < m_pattern.outer[o + 1]; ++p) changed[m_pattern.inner[p]] = 1;
-  }
-  // 2. A merge keeps the structure: it must hold every entry of the new matrix.
-  for (Index x = 0; x < total && ok && change.merging; ++x)
-    for (Index p = outer[x]; p < outer[x + 1] && ok; ++p) {
-      const Index y = inner[p];
-      if (x == y) continue;
-      const Index px = perm[change.oldOfNew[x]], py = perm[change.oldOfNew[y]];
-      ok = structureHolds(m_factor, (std::max)(px, py), (std::min)(px, py));
-    }
   if (!ok) {
     m_info = InvalidInput;
     return;
@@ -877,19 +849,33 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   FactorStructureBackup<Scalar, StorageIndex> backup;
   if (m_numeric.hasCachedUpdates())  // the dirty caches are set aside as they are: no deferred parts
     for (Index s : dirty) m_numeric.applyCorrections(m_factor, s);
-  relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
-  InputPattern<StorageIndex> oldPattern = std::move(m_pattern);
-  m_pattern = InputPattern<StorageIndex>();
-  m_pattern.assign(*pa);
-  std::vector<Scalar> oldValues(values, values + pa->nonZeros());
-  oldValues.swap(m_values);
-  CompressedPattern<StorageIndex> oldUpper = std::move(m_upper);
-  m_upper = CompressedPattern<StorageIndex>();
-  {
-    PermutedLowerEntries<StorageIndex> lower;
-    permuteTriangle<UpLo_>(*pa, change.newPerm, lower, &m_upper);
-    buildAssemblyMaps(lower, m_factor);
+  std::vector<FreshEntry<StorageIndex> > fresh(diff.fresh.size());
+  for (Index k = 0; k < Index(fresh.size()); ++k) {  // in the lower triangle of the new C
+    const Index p = diff.fresh[k], x = diff.freshOuter[k], y = inner[p];
+    const StorageIndex pi = change.newPerm[rowMajor ? x : y], pj = change.newPerm[rowMajor ? y : x];
+    fresh[k] = pi >= pj ? FreshEntry<StorageIndex>{p, pi, pj} : FreshEntry<StorageIndex>{~p, pj, pi};
   }
+  std::vector<std::pair<StorageIndex, StorageIndex> > pairs;  // entries between changed dofs and copies
+  auto isChanged = [&](Index x) { return change.oldOfNew[x] < 0 || changed[change.oldOfNew[x]]; };
+  for (Index x = 0; x < total; ++x) {
+    if (!isChanged(x)) continue;
+    for (Index p = outer[x]; p < outer[x + 1]; ++p) {
+      const Index y = inner[p];
+      if (y == x || !kept(rowMajor ? x : y, rowMajor ? y : x) || !isChanged(y)) continue;
+      const StorageIndex px = change.newPerm[x], py = change.newPerm[y];
+      pairs.emplace_back((std::max)(px, py), (std::min)(px, py));
+    }
+  }
+  remapUpperPattern(m_upper, m_Pinv.indices().data(), changed, change.relabel, pairs, diff.spareUpper);
+  relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
+  remapAssemblyMaps(m_factor, backup, change.relabel, mark, dirty, diff.posMap, fresh, diff.position);
+  // the previous pattern, values and upper pattern become the spares (and the revert)
+  std::swap(m_pattern, diff.sparePattern);
+  m_pattern.assign(*pa);
+  m_values.swap(diff.spareValues);
+  m_values.assign(values, values + pa->nonZeros());
+  m_upper.ptr.swap(diff.spareUpper.ptr);
+  m_upper.idx.swap(diff.spareUpper.idx);
   const PermutationType oldP = m_P;
   m_P.resize(total);
   for (Index i = 0; i < total; ++i) m_P.indices()[i] = change.newPerm[i];
@@ -914,10 +900,12 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   m_numeric.structureChanged();
 
   // 5. Refactor the dirty supernodes (or everything, when that is as cheap).
-  const double dirtyFlops = supernodeFlops(m_factor, dirty);
+  const char* removedFlags = m_removedList.empty() ? nullptr : m_removedPermuted.data();
+  const double dirtyFlops = supernodeFlops(m_factor, dirty, removedFlags);
+  const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
   UpdateRoute route = UpdateRoute::PartialRefactorization;
   if (m_route == UpdateRoute::Refactorization || !m_numeric.hasCachedUpdates() ||
-      dirtyFlops * threadCount() > 0.9 * m_totalFlops)
+      dirtyFlops * threadCount() > 0.9 * totalFlops)
     route = UpdateRoute::Refactorization;
   auto run = [&]() {
     m_numeric.setCacheUpdates(true);
@@ -928,11 +916,20 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   if (bad >= 0) {  // not positive definite: everything goes back as it was
     m_failedColumn = m_Pinv.indices()[bad];
     restoreFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
-    m_pattern = std::move(oldPattern);
-    m_values.swap(oldValues);
-    m_upper = std::move(oldUpper);
+    std::swap(m_pattern, diff.sparePattern);
+    m_values.swap(diff.spareValues);
+    m_upper.ptr.swap(diff.spareUpper.ptr);
+    m_upper.idx.swap(diff.spareUpper.idx);
     m_P = oldP;
     m_Pinv = m_P.inverse();
+    {  // (the rare failure path rebuilds the assembly maps from the previous matrix)
+      const Map<const MatrixType> previous(m_pattern.rows, m_pattern.cols, Index(m_pattern.inner.size()),
+                                           m_pattern.outer.data(), m_pattern.inner.data(), m_values.data());
+      std::vector<StorageIndex> previousPerm(m_P.indices().data(), m_P.indices().data() + oldN);
+      PermutedLowerEntries<StorageIndex> lower;
+      permuteTriangle<UpLo_>(previous, previousPerm, lower, static_cast<CompressedPattern<StorageIndex>*>(nullptr));
+      buildAssemblyMaps(lower, m_factor);
+    }
     m_removedOriginal.swap(oldRemovedOriginal);
     m_removedPermuted.swap(oldRemovedPermuted);
     m_removedList.swap(oldRemovedList);
@@ -952,7 +949,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     m_info = Success;
   }
   for (Index s : dirty) mark[s] = 0;
-  recordUpdate(route, changedCount, dirty, dirtyFlops, start);
+  recordUpdate(route, changedCount, dirty, route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops, start);
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
