@@ -247,6 +247,25 @@ TEST_CASE_TEMPLATE("insertDofs refactors only the dirty part", Cfg, uctest::d_in
   for (Index k = A.rows(); k < llt.rows(); ++k)
     CHECK(llt.permutationP().indices()[k] > llt.permutationP().indices()[origin[k]]);
   checkAgainstFresh<Cfg>(llt, G.template matrix<FullMatrix>(), g);
+  // a cut with nothing to duplicate and the same matrix (a seam without interior vertex): no work
+  const FullMatrix same = G.template matrix<FullMatrix>();
+  std::vector<int> identity(std::size_t(same.rows()));
+  for (std::size_t i = 0; i < identity.size(); ++i) identity[i] = int(i);
+  llt.insertDofs(toInput<Cfg>(same), identity);
+  REQUIRE(llt.info() == Eigen::Success);
+  CHECK(llt.lastUpdate().dirtySupernodes == 0);
+  CHECK(llt.lastUpdate().flops == 0);
+  checkAgainstFresh<Cfg>(llt, same, g);
+  llt.mergeDofs(toInput<Cfg>(same), identity);
+  REQUIRE(llt.info() == Eigen::Success);
+  CHECK(llt.lastUpdate().dirtySupernodes == 0);
+  // one value changed: not nothing
+  FullMatrix changed = same;
+  changed.coeffRef(3000, 3000) *= 2;
+  llt.insertDofs(toInput<Cfg>(changed), identity);
+  REQUIRE(llt.info() == Eigen::Success);
+  CHECK(llt.lastUpdate().dirtySupernodes > 0);
+  checkAgainstFresh<Cfg>(llt, changed, g);
 }
 
 TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was", Cfg, UC_CORE_CONFIGS) {

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <vector>
 
@@ -815,6 +816,15 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   }
   if (!ok) {
     m_info = InvalidInput;
+    return;
+  }
+  if (total == n && diff.fresh.empty() && std::find(changed.begin(), changed.end(), char(1)) == changed.end() &&
+      m_pattern.matches(*pa) &&
+      std::equal(values, values + pa->nonZeros(), m_values.begin(), [](const Scalar& x, const Scalar& y) {
+        return std::memcmp(&x, &y, sizeof(Scalar)) == 0;
+      })) {  // the same matrix, no dof added or merged (a cut with no interior vertex): nothing to do
+    m_info = Success;
+    recordUpdate(UpdateRoute::PartialRefactorization, 0, std::vector<Index>(), 0.0, start);
     return;
   }
   // 3. Dirty supernodes: the paths from the changed columns, origins and merged dofs to the roots.
