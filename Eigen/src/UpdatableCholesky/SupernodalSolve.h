@@ -37,6 +37,26 @@ EIGEN_STRONG_INLINE void prefetchSupernode(const Supernode<Scalar, StorageIndex>
   for (Index b = 0; b < rowBytes; b += 64) internal::prefetch(r + b);
 }
 
+/** \internal A packet with every lane equal to \a x. Real scalars use pset1. Complex ones are
+  * built by an unaligned load of an array of copies: Eigen 3.4's pset1 for the complex<float>
+  * packets (Packet2cf, Packet4cf, Packet8cf) reads the complex<float> through a double*, which
+  * breaks strict aliasing. On a local x[b][c] just written as floats, GCC -O3 then gave the
+  * scalar loads of x[b][c] the value of that double load, which type-based alias analysis places
+  * before the float stores: x read as uninitialised (0), and the rows below the triangle of a
+  * column block got no update (complex<float>, K = 2, SSE2/SSE3 builds). ploadu reads the
+  * scalars as floats (doubles for complex<double>), which is well defined. */
+template <typename Packet, typename Scalar>
+EIGEN_STRONG_INLINE Packet broadcastPacket(const Scalar& x) {
+  if constexpr (NumTraits<Scalar>::IsComplex) {
+    enum { Size = unpacket_traits<Packet>::size };
+    Scalar lanes[Size];
+    for (int q = 0; q < Size; ++q) lanes[q] = x;
+    return ploadu<Packet>(lanes);
+  } else {
+    return pset1<Packet>(x);
+  }
+}
+
 /** \internal One block of B ≤ 4 columns j0.. of a small supernode in the forward pass, for K
   * right-hand sides held in v (nr×K, leading dimension nr, the supernode's rows): solves the B×B
   * diagonal triangle, then v(i,:) -= L(i, block) x_block for every row i below the triangle, in
@@ -59,9 +79,9 @@ EIGEN_STRONG_INLINE void forwardColumnBlock(Index nr, Index j0, const Scalar* L,
   enum { Size = unpacket_traits<Packet>::size };
   Packet xp[B][K];
   for (int b = 0; b < B; ++b)
-    for (int c = 0; c < K; ++c) xp[b][c] = pset1<Packet>(x[b][c]);
+    for (int c = 0; c < K; ++c) xp[b][c] = broadcastPacket<Packet>(x[b][c]);
   Index i = j0 + B;
-  for (; !NumTraits<Scalar>::IsComplex && i + Size <= nr; i += Size) {  // complex: scalar loop  // every entry of L is loaded once for the K right-hand sides
+  for (; i + Size <= nr; i += Size) {  // every entry of L is loaded once for the K right-hand sides
     Packet lp[B];
     for (int b = 0; b < B; ++b) lp[b] = ploadu<Packet>(l[b] + i);
     for (int c = 0; c < K; ++c) {
@@ -89,10 +109,10 @@ EIGEN_STRONG_INLINE void backwardColumnBlock(Index nr, Index j0, const Scalar* L
   Packet acc[B][K];
   for (int b = 0; b < B; ++b) {
     l[b] = L + (j0 + b) * nr;
-    for (int c = 0; c < K; ++c) acc[b][c] = pset1<Packet>(Scalar(0));
+    for (int c = 0; c < K; ++c) acc[b][c] = broadcastPacket<Packet>(Scalar(0));
   }
   Index i = j0 + B;
-  for (; !NumTraits<Scalar>::IsComplex && i + Size <= nr; i += Size) {  // complex: scalar loop  // every entry of L is loaded once for the K right-hand sides
+  for (; i + Size <= nr; i += Size) {  // every entry of L is loaded once for the K right-hand sides
     Packet lp[B];
     for (int b = 0; b < B; ++b) lp[b] = pconj(ploadu<Packet>(l[b] + i));
     for (int c = 0; c < K; ++c) {
