@@ -1,7 +1,8 @@
 // solve(): dense right-hand sides of 1, 3 and 17 columns (dynamic and fixed-size, column- and
 // row-major), results written into a block, a column, a Map and the right-hand side itself, a
 // right-hand side that is an expression or a Map, and sparse right-hand sides giving sparse and
-// dense results, each compared with SimplicialLLT's solve of the same system.
+// dense results, each compared with SimplicialLLT's solve of the same system; 1 to 5 right-hand
+// sides on factors of many tiny supernodes and of one huge one (every kernel of the solve).
 #include "test_checks.h"
 
 #include <memory>
@@ -65,6 +66,54 @@ TEST_CASE_TEMPLATE("dense right-hand sides of 1, 3 and 17 columns", Cfg, UC_CONF
       Dense Xcols(n, k);
       for (Index j = 0; j < k; ++j) Xcols.col(j) = f.llt.solve(B.col(j));
       checkSolution<Cfg>(f, Xcols, B);
+    }
+  }
+}
+
+TEST_CASE_TEMPLATE("1 to 5 right-hand sides on factors of many tiny supernodes and of one huge one", Cfg, UC_CONFIGS) {
+  // The solve has inline kernels for up to 4 right-hand sides on supernodes of up to
+  // SmallSolveColumns (128) columns, blocks of 4 columns, and BLAS above: every path and every
+  // remainder of 4 appears here.
+  typedef typename Cfg::Dense Dense;
+  std::mt19937 g(73);
+  Eigen::SupernodeRelaxation fundamental, huge;
+  for (int k = 0; k < 3; ++k) {
+    fundamental.nrelax[k] = 0;
+    fundamental.zrelax[k] = 0;
+    huge.nrelax[k] = 1 << 30;
+    huge.zrelax[k] = 1e30;
+  }
+  struct Case {
+    const char* what;
+    Pattern pattern;
+    Eigen::SupernodeRelaxation relaxation;
+  };
+  const Case cases[] = {
+      {"tridiagonal, fundamental supernodes (one or two columns each)", tridiagonalPattern(97), fundamental},
+      {"random, fundamental supernodes", randomPattern(120, 3, g), fundamental},
+      {"dense 101: one supernode solved inline", densePattern(101), Eigen::SupernodeRelaxation()},
+      {"dense 203: one supernode solved with BLAS", densePattern(203), Eigen::SupernodeRelaxation()},
+      {"random 300, everything amalgamated", randomPattern(300, 4, g), huge},
+      {"banded 250, default relaxation", bandedRandomPattern(250, 9, 0.4, g), Eigen::SupernodeRelaxation()}};
+  for (const Case& c : cases) {
+    CAPTURE(c.what);
+    Fixture<Cfg> f(c.pattern, 7);
+    f.llt.setRelaxation(c.relaxation);
+    f.llt.compute(f.input);
+    REQUIRE(f.llt.info() == Eigen::Success);
+    const Index n = f.A.rows();
+    if (c.relaxation.nrelax[0] == 0 && c.pattern.edges.size() < std::size_t(n)) CHECK(f.llt.supernodeCount() >= n / 2);
+    if (c.pattern.edges.size() == std::size_t(n * (n - 1) / 2)) CHECK(f.llt.supernodeCount() == 1);
+    for (Index k = 1; k <= 5; ++k) {
+      CAPTURE(k);
+      const Dense B = randomDense<Cfg>(n, k, g);
+      const Dense X = f.llt.solve(B);
+      checkSolution<Cfg>(f, X, B);
+      if (k == 5) {  // each column alone (one-rhs kernels) agrees with the block
+        Dense Xcols(n, k);
+        for (Index j = 0; j < k; ++j) Xcols.col(j) = f.llt.solve(B.col(j));
+        checkSolution<Cfg>(f, Xcols, B);
+      }
     }
   }
 }

@@ -2,7 +2,8 @@
 // updateColumns on mesh Laplacians and random SPD matrices, each step checked against a fresh
 // factorization of the current matrix (A with the removed rows and columns replaced by those of
 // the identity) with the same permutation: equal to rounding for the exact routes, to solving
-// accuracy for the low-rank route. Also Dirichlet solves, and every error path (bad indices,
+// accuracy for the low-rank route. Also Dirichlet solves (B empty, random, all; 1 to 5
+// right-hand sides), and every error path (bad indices,
 // pattern mismatch, an update that is not positive definite) leaving a usable object.
 #include "test_checks.h"
 #include "test_config.h"
@@ -280,6 +281,55 @@ TEST_CASE_TEMPLATE("Dirichlet solves", Cfg, UC_CORE_CONFIGS) {
     llt.restoreDofs(B);
     REQUIRE(llt.info() == Eigen::Success);
     CHECK(llt.removedDofs().empty());
+  }
+}
+
+TEST_CASE_TEMPLATE("Dirichlet solves with B empty, random and all; 1 to 5 right-hand sides", Cfg, UC_CORE_CONFIGS) {
+  // On a random Hermitian matrix (complex values for the complex types: the coupling A_IB g
+  // must take the conjugate for the entries stored in the other triangle), solveDirichlet must
+  // give x_B = g_B exactly and (A x - b)_I = 0 to solving accuracy.
+  typedef typename Cfg::Dense Dense;
+  typedef typename Cfg::Scalar Scalar;
+  std::mt19937 g(29);
+  const Index n = 160;
+  const typename Cfg::FullMatrix A =
+      spdFromPattern<Scalar, typename Cfg::StorageIndex>(randomPattern(n, 5, g), g, 0.5);
+  const double normA = double(Dense(A).cwiseAbs().rowwise().sum().maxCoeff());
+  typename Cfg::Solver llt(toInput<Cfg>(A));
+  REQUIRE(llt.info() == Eigen::Success);
+  std::vector<int> all(n);
+  for (Index i = 0; i < n; ++i) all[i] = int(i);
+  std::vector<int> random = all;
+  std::shuffle(random.begin(), random.end(), g);
+  random.resize(n / 5);
+  const std::vector<int> none;
+  for (const std::vector<int>* B : std::initializer_list<const std::vector<int>*>{&none, &random, &all}) {
+    CAPTURE(B->size());
+    if (!B->empty()) llt.removeDofs(*B);
+    REQUIRE(llt.info() == Eigen::Success);
+    std::vector<char> isB(n, 0);
+    for (int v : *B) isB[v] = 1;
+    for (Index k = 1; k <= 5; ++k) {
+      CAPTURE(k);
+      const Dense b = randomDense<Cfg>(n, k, g), known = randomDense<Cfg>(n, k, g);
+      const Dense x = k == 2 ? llt.solveDirichlet(b, known * Scalar(1)) : llt.solveDirichlet(b, known);
+      REQUIRE(x.rows() == n);
+      REQUIRE(x.cols() == k);
+      const Dense r = A * x - b;
+      double worstInterior = 0, worstBoundary = 0;
+      for (Index i = 0; i < n; ++i)
+        for (Index c = 0; c < k; ++c) {
+          if (isB[i])
+            worstBoundary = std::max(worstBoundary, double(std::abs(x(i, c) - known(i, c))));
+          else
+            worstInterior = std::max(worstInterior, double(std::abs(r(i, c))));
+        }
+      CHECK(worstBoundary == 0);
+      CHECK(worstInterior <= lowRankTolerance<Cfg>() * (double(b.norm()) + normA * double(x.norm())));
+      if (B->empty()) CHECK(double((x - llt.solve(b)).norm()) == 0);  // no removed dof: a plain solve
+    }
+    if (!B->empty()) llt.restoreDofs(*B);
+    REQUIRE(llt.info() == Eigen::Success);
   }
 }
 

@@ -12,6 +12,7 @@
 #ifndef EIGEN_UPDATABLE_CHOLESKY_DOF_UPDATES_H
 #define EIGEN_UPDATABLE_CHOLESKY_DOF_UPDATES_H
 
+#include <algorithm>
 #include <vector>
 
 namespace Eigen {
@@ -137,28 +138,63 @@ double refactorizationFlops(const SupernodalFactor<Scalar, StorageIndex>& f, dou
   return flops;
 }
 
-/** \internal y -= A(:,B) g(B) on the rows outside B, i.e. subtracts the Dirichlet coupling A_IB g_B,
-  * for the stored UpLo triangle of A (pattern \a pattern, values \a values, row- or column-major)
-  * and the removed flags \a removed in A's own numbering. y and g are n×k, column-major. */
-template <int UpLo, bool RowMajor, typename Scalar, typename StorageIndex>
-void subtractDirichletCoupling(const InputPattern<StorageIndex>& pattern, const Scalar* values, const char* removed,
-                          const Scalar* g, Index ldg, Scalar* y, Index ldy, Index k) {
-  const Index outerSize = Index(pattern.outer.size()) - 1;
-  for (Index o = 0; o < outerSize; ++o)
-    for (Index p = pattern.outer[o]; p < pattern.outer[o + 1]; ++p) {
-      const Index row = RowMajor ? o : Index(pattern.inner[p]);
-      const Index col = RowMajor ? Index(pattern.inner[p]) : o;
-      if ((UpLo == Lower && row < col) || (UpLo == Upper && row > col) || row == col) continue;
-      const bool rowRemoved = removed[row] != 0, colRemoved = removed[col] != 0;
-      if (rowRemoved == colRemoved) continue;
-      // A(row,col) = v and A(col,row) = conj(v): the kept index receives the removed one's value.
-      for (Index c = 0; c < k; ++c) {
-        if (colRemoved)
-          y[row + c * ldy] -= values[p] * g[col + c * ldg];
-        else
-          y[col + c * ldy] -= numext::conj(values[p]) * g[row + c * ldg];
-      }
+/** \internal Calls visit(i, c) for every entry C(i,k) = c, i != k, of column \a k of the
+  * permuted matrix C = P A P^T, reading the values \a values of the input through the assembly
+  * maps of the factor: the rows i > k from the map of k's own column, the rows i < k (listed by
+  * \a upper) from the maps of their columns, conjugated. The cost is that of column k and of
+  * a binary search per entry, independent of n. */
+template <typename Scalar, typename StorageIndex, typename Visit>
+void forEachPermutedColumnEntry(const SupernodalFactor<Scalar, StorageIndex>& f,
+                                const CompressedPattern<StorageIndex>& upper, const Scalar* values, Index k,
+                                Visit&& visit) {
+  // The entries of a supernode's map come column by column: the range of local column c.
+  auto columnRange = [](const Supernode<Scalar, StorageIndex>& node, Index c, Index& begin, Index& end) {
+    const Index nr = node.nrows();
+    const auto& t = node.assemblyTarget;
+    auto columnOf = [nr](Index target) { return (target >= 0 ? target : ~target) / nr; };
+    begin = std::partition_point(t.begin(), t.end(), [&](Index x) { return columnOf(x) < c; }) - t.begin();
+    end = std::partition_point(t.begin() + begin, t.end(), [&](Index x) { return columnOf(x) <= c; }) - t.begin();
+  };
+  auto valueAt = [&](const Supernode<Scalar, StorageIndex>& node, Index q) {
+    const Scalar v = values[node.assemblySource[q]];
+    return node.assemblyTarget[q] >= 0 ? v : Scalar(numext::conj(v));
+  };
+  const auto& own = f.nodes[f.colToSuper[k]];
+  Index begin, end;
+  columnRange(own, k - own.firstCol, begin, end);
+  for (Index q = begin; q < end; ++q) {  // C(i,k), i >= k, stored in column k
+    const Index target = own.assemblyTarget[q] >= 0 ? own.assemblyTarget[q] : ~own.assemblyTarget[q];
+    const Index i = own.rows[target % own.nrows()];
+    if (i != k) visit(i, valueAt(own, q));
+  }
+  for (Index p = upper.ptr[k]; p < upper.ptr[k + 1]; ++p) {  // C(i,k) = conj(C(k,i)), i < k
+    const Index i = upper.idx[p];
+    const auto& node = f.nodes[f.colToSuper[i]];
+    const Index nr = node.nrows(), c = i - node.firstCol;
+    const Index position = std::lower_bound(node.rows.begin(), node.rows.end(), StorageIndex(k)) - node.rows.begin();
+    const Index wanted = c * nr + position;
+    columnRange(node, c, begin, end);
+    for (Index q = begin; q < end; ++q) {
+      const Index target = node.assemblyTarget[q] >= 0 ? node.assemblyTarget[q] : ~node.assemblyTarget[q];
+      if (target == wanted) visit(i, Scalar(numext::conj(valueAt(node, q))));
     }
+  }
+}
+
+/** \internal The Dirichlet coupling in the permuted numbering: X(i,:) -= C(i,k) X(k,:) for every
+  * removed permuted column k in \a removedColumns and every kept row i (\a removed flags the
+  * removed permuted indices). X (leading dimension ldx, \a rhs columns) holds the known values in
+  * the removed rows. Only the columns of the removed dofs are read: the cost is that of their
+  * entries, not of the matrix. */
+template <typename Scalar, typename StorageIndex>
+void subtractDirichletCoupling(const SupernodalFactor<Scalar, StorageIndex>& f,
+                               const CompressedPattern<StorageIndex>& upper, const Scalar* values, const char* removed,
+                               const std::vector<StorageIndex>& removedColumns, Scalar* X, Index ldx, Index rhs) {
+  for (StorageIndex k : removedColumns)
+    forEachPermutedColumnEntry(f, upper, values, Index(k), [&](Index i, const Scalar& c) {
+      if (removed[i]) return;
+      for (Index r = 0; r < rhs; ++r) X[i + r * ldx] -= c * X[k + r * ldx];
+    });
 }
 
 }  // namespace updatable_cholesky

@@ -100,7 +100,14 @@ struct SupernodalFactor {
     return f;
   }
 
-  /** The largest number of rows below any supernode (workspace of the solve). */
+  /** The largest number of rows of any supernode (workspace of the solve). */
+  Index maxRows() const {
+    Index m = 0;
+    for (const Node& node : nodes) m = (std::max)(m, node.nrows());
+    return m;
+  }
+
+  /** The largest number of rows below any supernode. */
   Index maxBelow() const {
     Index m = 0;
     for (const Node& node : nodes) m = (std::max)(m, node.below());

@@ -283,7 +283,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   void solveInPlacePermuted(Matrix<Scalar, Dynamic, Dynamic>& x) const {
     const Index k = x.cols();
     if (m_n == 0 || k == 0) return;
-    std::vector<Scalar> work(m_maxBelow * k + 1);
+    std::vector<Scalar> work(m_factor.maxRows() * k + 1);
     internal::updatable_cholesky::forwardSolve(m_factor, x.data(), x.rows(), k, work.data());
     internal::updatable_cholesky::backwardSolve(m_factor, x.data(), x.rows(), k, work.data());
   }
@@ -966,14 +966,20 @@ Matrix<typename MatrixType_::Scalar, Dynamic, Dynamic> UpdatableSupernodalLLT<Ma
   eigen_assert(m_factorizationIsOk && "UpdatableSupernodalLLT::solveDirichlet(): no valid factorization.");
   eigen_assert(b.rows() == m_n && g.rows() == m_n && b.cols() == g.cols() &&
                "UpdatableSupernodalLLT::solveDirichlet(): b and g must both be n x k");
-  Matrix<Scalar, Dynamic, Dynamic> rhs = b, known = g;
+  // Everything happens in the permuted numbering: b is permuted once, the removed rows take g,
+  // the kept rows lose A_IB g_B (read from the columns of B only), then one solve.
+  Matrix<Scalar, Dynamic, Dynamic> x = m_P * b;
   if (!m_removedList.empty()) {
-    internal::updatable_cholesky::subtractDirichletCoupling<UpLo_, bool(MatrixType::IsRowMajor)>(
-        m_pattern, m_values.data(), m_removedOriginal.data(), known.data(), known.rows(), rhs.data(), rhs.rows(),
-        rhs.cols());
-    for (StorageIndex i : m_removedList) rhs.row(i) = known.row(i);
+    const Ref<const Matrix<Scalar, Dynamic, Dynamic> > known(g.derived());
+    std::vector<StorageIndex> columns(m_removedList.size());
+    for (Index r = 0; r < Index(m_removedList.size()); ++r) {
+      columns[r] = m_P.indices()[m_removedList[r]];
+      x.row(columns[r]) = known.row(m_removedList[r]);
+    }
+    internal::updatable_cholesky::subtractDirichletCoupling(m_factor, m_upper, m_values.data(),
+                                                            m_removedPermuted.data(), columns, x.data(), x.rows(),
+                                                            x.cols());
   }
-  Matrix<Scalar, Dynamic, Dynamic> x = m_P * rhs;
   solveInPlacePermuted(x);
   return m_Pinv * x;
 }
