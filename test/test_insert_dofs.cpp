@@ -197,6 +197,18 @@ void randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route
     CHECK(st.flopFraction >= 0);
     CHECK(st.flopFraction <= 1.0 + 1e-12);
     checkAgainstFresh<Cfg>(llt, withIdentityRows<Cfg>(G.template matrix<FullMatrix>(), removed), g);
+    // Dirichlet solve on the current (cut) matrix: A_II x_I = b_I - A_IB g, x_B = g
+    const FullMatrix A = G.template matrix<FullMatrix>();
+    const typename Cfg::Dense b = randomDense<Cfg>(A.rows(), 2, g), known = randomDense<Cfg>(A.rows(), 2, g);
+    const typename Cfg::Dense x = llt.solveDirichlet(b, known);
+    typename Cfg::Dense r = A.template selfadjointView<Eigen::Lower>() * x - b;
+    for (Index i = 0; i < A.rows(); ++i)
+      if (removed[std::size_t(i)]) {
+        CHECK(x.row(i) == known.row(i));
+        r.row(i).setZero();
+      }
+    CHECK(double(r.norm() / (b.norm() + (A.template selfadjointView<Eigen::Lower>() * x).norm())) <=
+          100 * exactTolerance<Cfg>());
   }
   CHECK(inserts > 0);
   CHECK(merges > 0);

@@ -152,7 +152,8 @@ bool diffInput(const InputPattern<StorageIndex>& old, const Scalar* oldValues, c
 
 /** \internal Renews every supernode's assembly map after relabelFactor(): clean supernodes map
   * their sources through \a posMap; dirty ones (\a dirty) are rebuilt from their old maps (kept in
-  * the nodes; old rows, first columns and column counts in \a backup) and the \a fresh entries. */
+  * the nodes; old rows, first columns and column counts in \a backup) and the \a fresh entries,
+  * column by column like every map. */
 template <typename Scalar, typename StorageIndex>
 void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorStructureBackup<Scalar, StorageIndex>& backup,
                        const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
@@ -170,7 +171,7 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
     return f.colToSuper[a.col] < f.colToSuper[b.col];
   });
   position.resize(f.n, StorageIndex(-1));
-  std::vector<Index> source, target;
+  std::vector<Index> source, target, order;
   auto next = fresh.begin();
   for (Index s : dirty) {
     auto& node = f.nodes[s];
@@ -198,8 +199,19 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
       source.push_back(next->source >= 0 ? next->source : ~next->source);
       target.push_back(next->source >= 0 ? offset : ~offset);
     }
-    node.assemblySource.assign(source.begin(), source.end());
-    node.assemblyTarget.assign(target.begin(), target.end());
+    // the map lists the entries column by column, as buildAssemblyMaps() does (the Dirichlet
+    // coupling finds a column's range by bisection)
+    order.resize(source.size());
+    for (Index k = 0; k < Index(order.size()); ++k) order[k] = k;
+    auto columnOf = [nr](Index t) { return (t >= 0 ? t : ~t) / nr; };
+    std::stable_sort(order.begin(), order.end(),
+                     [&](Index a, Index b) { return columnOf(target[a]) < columnOf(target[b]); });
+    node.assemblySource.resize(order.size());
+    node.assemblyTarget.resize(order.size());
+    for (Index k = 0; k < Index(order.size()); ++k) {
+      node.assemblySource[k] = source[order[k]];
+      node.assemblyTarget[k] = target[order[k]];
+    }
     for (Index k = 0; k < nr; ++k) position[node.rows[k]] = StorageIndex(-1);
   }
 }

@@ -24,7 +24,8 @@ struct Supernode {
   std::vector<StorageIndex> parentPosition;  ///< for each row below, its position in the parent's rows
   Matrix<Scalar, Dynamic, Dynamic> values;   ///< the dense block L(rows, columns)
   /** Entries of the input matrix scattered into \c values: value source[k] goes to offset
-    * target[k] of the block; a negative target ~t means "conjugate, then store at t". */
+    * target[k] of the block; a negative target ~t means "conjugate, then store at t". Listed
+    * column by column (increasing local column), which the Dirichlet coupling relies on. */
   std::vector<Index> assemblySource, assemblyTarget;
 
   Index nrows() const { return Index(rows.size()); }
