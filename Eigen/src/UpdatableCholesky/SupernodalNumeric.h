@@ -107,15 +107,18 @@ struct UpdateStack {
   }
 };
 
-/** \internal The rows of \a node whose dofs are not removed go to \a kept; true when the supernode
-  * is factored on those alone (a reduced front: a quarter or more of its rows removed). */
+/** \internal True when a supernode of \a rows rows, \a keptRows of them not removed, is factored on
+  * its kept rows and columns alone (a reduced front: a quarter or more of its rows removed). */
+inline bool isReducedFront(Index rows, Index keptRows) { return 4 * (rows - keptRows) >= rows; }
+
+/** \internal The rows of \a node whose dofs are not removed go to \a kept; true for a reduced front. */
 template <typename Scalar, typename StorageIndex>
 bool isReduced(const Supernode<Scalar, StorageIndex>& node, const char* removed, std::vector<Index>& kept) {
   kept.clear();
   const Index nr = node.nrows();
   for (Index k = 0; k < nr; ++k)
     if (!removed[node.rows[k]]) kept.push_back(k);
-  return 4 * (nr - Index(kept.size())) >= nr;
+  return isReducedFront(nr, Index(kept.size()));
 }
 
 /** \internal Dense flops of factoring \a node, on its kept rows and columns when it is a reduced
@@ -130,7 +133,7 @@ double frontFlops(const Supernode<Scalar, StorageIndex>& node, const char* remov
       ++kr;
       kc += k < node.ncols;
     }
-  if (4 * (nr - kr) < nr) return node.flops();
+  if (!isReducedFront(nr, kr)) return node.flops();
   const double c = double(kc), b = double(kr - kc);
   return c * c * c / 3.0 + b * c * c + b * b * c;
 }
