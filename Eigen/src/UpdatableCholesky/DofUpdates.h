@@ -22,9 +22,10 @@ namespace Eigen {
 enum class UpdateRoute {
   Automatic,               ///< the cheapest route by the cost model (default)
   PartialRefactorization,  ///< recompute the dirty supernodes only (Algorithm 3); exact
-  LowRank,                 ///< removeDofs only: fold L(I,B) into L(I,I) along the paths of B
+  LowRank,                 ///< removeDofs: fold L(I,B) into L(I,I) along the paths of B; insertDofs/mergeDofs: as Mixed
   Refactorization,         ///< recompute every supernode
-  Mixed                    ///< removeDofs only: low-rank below, partial refactorization of the top
+  Mixed                    ///< removeDofs: low-rank below, partial refactorization of the top; insertDofs/mergeDofs:
+                           ///< partial refactorization below, signed low-rank folds on top (LowRankTopUpdate.h)
 };
 
 /** \ingroup UpdatableCholesky_Module
@@ -52,6 +53,7 @@ struct UpdateWorkspace {
   std::vector<Index> rank, local, first;                    ///< per-supernode ranks, first columns (cost model)
   std::vector<double> cost;                                 ///< per-supernode low-rank flops (cost model)
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carried;   ///< W passed to the parent
+  std::vector<Matrix<Scalar, Dynamic, Dynamic> > carriedNegative;  ///< downdate part passed up (insertions)
   void resize(Index supernodes) {
     mark.assign(supernodes, 0);
     rank.assign(supernodes, 0);
@@ -60,6 +62,8 @@ struct UpdateWorkspace {
     cost.assign(supernodes, 0.0);
     carried.clear();
     carried.resize(supernodes);
+    carriedNegative.clear();
+    carriedNegative.resize(supernodes);
   }
 };
 

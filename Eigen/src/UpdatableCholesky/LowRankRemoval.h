@@ -198,6 +198,30 @@ struct FoldSource {
   Index start, count, child;
 };
 
+/** \internal Folds the W columns of \a sources (in W in the order of the list, sorted by start)
+  * into the supernode's kept columns, one group of sources with close starts at a time, so that
+  * each fold touches only the columns from its group's start on. \returns the flops spent. */
+template <typename Scalar, typename StorageIndex, typename Dense>
+double foldSources(Supernode<Scalar, StorageIndex>& node, Dense& W, const std::vector<FoldSource>& sources,
+                   const char* removed) {
+  const Index nc = node.ncols;
+  double flops = 0;
+  for (std::size_t g = 0, first = 0; g < sources.size();) {
+    const Index start = sources[g].start;
+    Index count = 0;
+    std::size_t h = g;
+    for (; h < sources.size(); ++h) {  // join sources while the wasted part is small
+      const bool close = sources[h].start - start <= (nc - start) / 8;
+      if (h > g && !close && count >= Index(BlockedFoldMinRank)) break;
+      count += sources[h].count;
+    }
+    flops += foldIntoColumns(node, W, Index(first), count, start, removed);
+    first += std::size_t(count);
+    g = h;
+  }
+  return flops;
+}
+
 /** \internal Removes the permuted columns \a removedNow (whose flags are already set in
   * \a removed, with those of earlier removals) from the factor by a low-rank update of the dirty
   * supernodes \a dirty (increasing, as from dirtySupernodes()), keeping the cached update
@@ -268,25 +292,13 @@ double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
           U[u + i * m] = Scalar(0);
           U[i + u * m] = Scalar(0);
         }
-        for (Dense& w : numeric.pendingCorrections(s)) w.row(u).setZero();
+        for (auto& c : numeric.pendingCorrections(s)) c.W.row(u).setZero();
       }
     }
     if (rank == 0) continue;
     // 3. fold W into the kept columns, [L(:,J) W] G = [L'(:,J) W'] with G unitary and W' zero on
-    //    the supernode's own rows, one group of sources with close starts at a time
-    for (std::size_t g = 0, first = 0; g < sources.size();) {
-      const Index start = sources[g].start;
-      Index count = 0;
-      std::size_t h = g;
-      for (; h < sources.size(); ++h) {  // join sources while the wasted part is small
-        const bool close = sources[h].start - start <= (nc - start) / 8;
-        if (h > g && !close && count >= Index(BlockedFoldMinRank)) break;
-        count += sources[h].count;
-      }
-      flops += foldIntoColumns(node, W, Index(first), count, start, removed);
-      first += std::size_t(count);
-      g = h;
-    }
+    //    the supernode's own rows
+    flops += foldSources(node, W, sources, removed);
     if (m == 0) continue;
     // 4. what is left of W lives on the rows below: compress, correct U, carry to the parent
     Dense out = W.bottomRows(m);

@@ -227,29 +227,40 @@ class SupernodalNumeric {
     * that change them in place. */
   std::vector<std::vector<Scalar> >& cache() { return m_cache; }
 
-  /** Defers the correction U_s += W W^H of the cached update matrix of supernode \a s (W: below() ×
-    * r) until the cache is read; most such corrections are never read, because the supernode is
-    * recomputed first (e.g. restoreDofs() after removeDofs()). Applied at once when they pile up. */
-  void deferCorrection(const Factor& f, Index s, Dense& W) {
+  /** Defers the correction U_s += sign · W W^H (sign +1 or -1) of the cached update matrix of
+    * supernode \a s (W: below() × r) until the cache is read; most such corrections are never
+    * read, because the supernode is recomputed first (e.g. restoreDofs() after removeDofs()).
+    * Applied at once when they pile up. */
+  void deferCorrection(const Factor& f, Index s, Dense& W, RealScalar sign = RealScalar(1)) {
     auto& list = m_pending[s];
     list.emplace_back();
-    list.back().swap(W);
+    list.back().W.swap(W);
+    list.back().sign = sign;
     Index columns = 0;
-    for (const Dense& w : list) columns += w.cols();
+    for (const Correction& c : list) columns += c.W.cols();
     if (2 * columns >= f.nodes[s].below()) applyCorrections(f, s);
   }
+  /** A deferred correction U += sign · W W^H. */
+  struct Correction {
+    Dense W;
+    RealScalar sign;
+  };
   /** The deferred corrections of supernode \a s (their rows of removed dofs are zeroed with U's). */
-  std::vector<Dense>& pendingCorrections(Index s) { return m_pending[s]; }
+  std::vector<Correction>& pendingCorrections(Index s) { return m_pending[s]; }
   /** Applies the deferred corrections of supernode \a s to its cached update matrix. \returns the flops. */
   double applyCorrections(const Factor& f, Index s) {
     double flops = 0;
     const Index m = f.nodes[s].below();
-    for (const Dense& w : m_pending[s]) {
-      herkLower(m, w.cols(), RealScalar(1), w.data(), m, m_cache[s].data(), m);
-      flops += double(m) * double(m) * double(w.cols());
+    for (const Correction& c : m_pending[s]) {
+      herkLower(m, c.W.cols(), c.sign, c.W.data(), m, m_cache[s].data(), m);
+      flops += double(m) * double(m) * double(c.W.cols());
     }
     m_pending[s].clear();
     return flops;
+  }
+  /** Drops the deferred corrections of supernode \a s (its cached matrix is being put back). */
+  void discardCorrections(Index s) {
+    if (Index(m_pending.size()) > s) m_pending[s].clear();
   }
 
   /** Bytes of update-matrix workspace currently held. */
@@ -258,7 +269,7 @@ class SupernodalNumeric {
     for (const auto& s : m_stacks) b += Index(s.buffer.capacity() * sizeof(Scalar));
     for (const auto& u : m_cache) b += Index(u.capacity() * sizeof(Scalar));
     for (const auto& list : m_pending)
-      for (const Dense& w : list) b += Index(w.size() * sizeof(Scalar));
+      for (const Correction& c : list) b += Index(c.W.size() * sizeof(Scalar));
     return b;
   }
 
@@ -451,7 +462,7 @@ class SupernodalNumeric {
   std::vector<Location> m_location;
   std::vector<UpdateStack<Scalar> > m_stacks;
   std::vector<std::vector<Scalar> > m_cache;  ///< per supernode update matrix, when caching
-  std::vector<std::vector<Dense> > m_pending;  ///< per supernode deferred corrections U += W W^H
+  std::vector<std::vector<Correction> > m_pending;  ///< per supernode deferred corrections U += ±W W^H
   bool m_cacheUpdates = false, m_cacheValid = false;
   std::atomic<Index> m_failed{-1};
 };

@@ -906,18 +906,78 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   m_totalFlops = m_factor.flops();
   m_numeric.structureChanged();
 
-  // 5. Refactor the dirty supernodes (or everything, when that is as cheap).
+  // 5. Refactor the dirty supernodes (or everything, when that is as cheap); or refactor the
+  //    lower dirty supernodes and fold the change into the top ones (LowRankTopUpdate.h).
   const char* removedFlags = m_removedList.empty() ? nullptr : m_removedPermuted.data();
   const double dirtyFlops = supernodeFlops(m_factor, dirty, removedFlags);
   const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
-  UpdateRoute route = UpdateRoute::PartialRefactorization;
+  std::vector<Index> bottom, top;
+  double plannedFlops = dirtyFlops;
+  if (m_route != UpdateRoute::PartialRefactorization && m_route != UpdateRoute::Refactorization &&
+      m_numeric.hasCachedUpdates() && !dirty.empty()) {
+    // a dirty supernode may be folded when it keeps its rows and columns and no column of it changed
+    const Index ns = m_factor.count();
+    std::vector<char> eligible(ns, 0);
+    std::vector<Index> changedColumns(ns, 0);
+    for (Index s : dirty) {
+      const auto& node = m_factor.nodes[s];
+      for (Index c = node.firstCol; c < node.firstCol + node.ncols; ++c) {
+        const StorageIndex o = change.oldOfNew[m_Pinv.indices()[c]];
+        changedColumns[s] += o < 0 || changed[o];
+      }
+      eligible[s] = Index(backup.rows[s].size()) == node.nrows() && backup.ncols[s] == node.ncols &&
+                    changedColumns[s] == 0;
+      changedColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);  // merged away
+    }
+    const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
+    const double planned = topUpdatePlan(m_factor, dirty, eligible, changedColumns, m_removedPermuted.data(), force,
+                                         bottom, top, m_workspace);
+    if (top.empty() || (!force && planned >= dirtyFlops)) {
+      top.clear();
+      bottom.clear();
+    } else {
+      plannedFlops = planned;
+    }
+  }
+  UpdateRoute route = top.empty() ? UpdateRoute::PartialRefactorization : UpdateRoute::Mixed;
   if (m_route == UpdateRoute::Refactorization || !m_numeric.hasCachedUpdates() ||
-      dirtyFlops * threadCount() > 0.9 * totalFlops)
+      plannedFlops * threadCount() > 0.9 * totalFlops)
     route = UpdateRoute::Refactorization;
-  auto run = [&]() {
+  double spentFlops = route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops;
+  auto run = [&]() -> Index {
     m_numeric.setCacheUpdates(true);
-    return route == UpdateRoute::Refactorization ? m_numeric.factorize(m_factor, numericInput(), threadCount())
-                                                 : m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
+    if (route == UpdateRoute::Refactorization) return m_numeric.factorize(m_factor, numericInput(), threadCount());
+    if (route == UpdateRoute::PartialRefactorization)
+      return m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
+    // Mixed: the top keeps its values and cached update matrix (its structure is the same)
+    for (Index s : top) {
+      m_factor.nodes[s].values = backup.values[s];
+      m_numeric.cache()[s] = backup.cache[s];
+    }
+    const Index failed = m_numeric.refactorize(m_factor, numericInput(), bottom, threadCount());
+    if (failed >= 0) {
+      for (Index s : bottom) m_workspace.rank[s] = 0;
+      return failed;
+    }
+    spentFlops = supernodeFlops(m_factor, bottom, removedFlags);
+    bool captured = true;
+    for (Index s : bottom) {  // the refactored children of the top pass up the change of their update matrix
+      const Index p = m_factor.parent[s];
+      if (p == -1 || !std::binary_search(top.begin(), top.end(), p)) continue;
+      const Index m = m_factor.nodes[s].below(), rankBound = m_workspace.rank[s];
+      m_workspace.rank[s] = 0;
+      eigen_assert(Index(backup.cache[s].size()) == m * m && "a refactored child of the top keeps its rows below");
+      captured = captured && updateMatrixChange(m_numeric.cache()[s].data(), backup.cache[s].data(), m, rankBound,
+                                                m_workspace.carried[s], m_workspace.carriedNegative[s], spentFlops);
+    }
+    if (captured && lowRankTopUpdate(m_factor, m_numeric, top, m_removedPermuted.data(), m_workspace, spentFlops))
+      return -1;
+    for (Index s : bottom) m_workspace.carried[s] = m_workspace.carriedNegative[s] = typename UpdateWorkspace<Scalar>::Dense();
+    // a change not captured by its rank bound, or a downdate lost a pivot: refactor the top from the caches instead
+    for (Index s : top) m_numeric.discardCorrections(s);
+    route = UpdateRoute::PartialRefactorization;
+    spentFlops = dirtyFlops;
+    return m_numeric.refactorize(m_factor, numericInput(), top, threadCount());
   };
   const Index bad = run();
   if (bad >= 0) {  // not positive definite: everything goes back as it was
@@ -944,7 +1004,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     m_maxBelow = oldMaxBelow;
     m_totalFlops = oldTotalFlops;
     m_numeric.structureChanged();
-    if (route == UpdateRoute::PartialRefactorization) {
+    for (Index s : dirty) m_numeric.discardCorrections(s);
+    if (route != UpdateRoute::Refactorization) {
       m_numeric.cacheRestored();
     } else {
       const Index again = m_numeric.factorize(m_factor, numericInput(), threadCount());
@@ -956,7 +1017,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     m_info = Success;
   }
   for (Index s : dirty) mark[s] = 0;
-  recordUpdate(route, changedCount, dirty, route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops, start);
+  recordUpdate(route, changedCount, dirty, spentFlops, start);
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
