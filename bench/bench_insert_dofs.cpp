@@ -92,6 +92,7 @@ std::string routeName(Eigen::UpdateRoute route)
   case Eigen::UpdateRoute::PartialRefactorization: return "Partial";
   case Eigen::UpdateRoute::LowRank: return "LowRank";
   case Eigen::UpdateRoute::Refactorization: return "Refactor";
+  case Eigen::UpdateRoute::Mixed: return "Mixed";
   default: return "route" + std::to_string(int(route));
   }
 }

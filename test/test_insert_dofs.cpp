@@ -364,6 +364,19 @@ TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was",
     CHECK(llt.info() == Eigen::Success);
     checkAgainstFresh<Cfg>(llt, Acut, g);
   }
+  SUBCASE("not positive definite on the mixed route: in the refactored part, or only in the folded top") {
+    llt.setUpdateRoute(Eigen::UpdateRoute::Mixed);
+    for (const Scalar diagonal : {Scalar(-1), Scalar(1e-7)}) {  // 1e-7: the copies' pivots pass, the top's fail
+      FullMatrix bad = Acut;
+      for (Index c = n; c < Acut.rows(); ++c) bad.coeffRef(c, c) = diagonal;
+      llt.insertDofs(toInput<Cfg>(bad), origin);
+      CHECK(llt.info() == Eigen::NumericalIssue);
+      unchanged();
+    }
+    llt.insertDofs(toInput<Cfg>(Acut), origin);
+    CHECK(llt.info() == Eigen::Success);
+    checkAgainstFresh<Cfg>(llt, Acut, g, lowRankTolerance<Cfg>());
+  }
   SUBCASE("bad merges") {
     llt.insertDofs(toInput<Cfg>(Acut), origin);
     REQUIRE(llt.info() == Eigen::Success);

@@ -949,10 +949,11 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     if (route == UpdateRoute::Refactorization) return m_numeric.factorize(m_factor, numericInput(), threadCount());
     if (route == UpdateRoute::PartialRefactorization)
       return m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
-    // Mixed: the top keeps its values and cached update matrix (its structure is the same)
+    // Mixed: the top keeps its values and cached update matrix (its structure is the same); they
+    // leave the backup, so a failure recomputes them from the restored caches
     for (Index s : top) {
-      m_factor.nodes[s].values = backup.values[s];
-      m_numeric.cache()[s] = backup.cache[s];
+      m_factor.nodes[s].values.swap(backup.values[s]);
+      m_numeric.cache()[s].swap(backup.cache[s]);
     }
     const Index failed = m_numeric.refactorize(m_factor, numericInput(), bottom, threadCount());
     if (failed >= 0) {
@@ -1005,7 +1006,13 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     m_totalFlops = oldTotalFlops;
     m_numeric.structureChanged();
     for (Index s : dirty) m_numeric.discardCorrections(s);
-    if (route != UpdateRoute::Refactorization) {
+    if (!top.empty() && route != UpdateRoute::Refactorization) {  // the top's previous values left the backup
+      m_numeric.cacheRestored();
+      const Index again = m_numeric.refactorize(m_factor, numericInput(), top, threadCount());
+      eigen_assert(again < 0 && "UpdatableSupernodalLLT: the previous top could not be recomputed");
+      m_factorizationIsOk = again < 0;
+      m_numeric.cacheRestored();
+    } else if (route != UpdateRoute::Refactorization) {
       m_numeric.cacheRestored();
     } else {
       const Index again = m_numeric.factorize(m_factor, numericInput(), threadCount());
