@@ -34,6 +34,10 @@ namespace updatable_cholesky {
 
 /** \internal Random vectors sampled beyond the rank bound of an update-matrix change. */
 enum { UpdateChangeOversampling = 8 };
+/** \internal Time per flop of the folds and of the split of an update-matrix change (rotations,
+  * small eigenproblems) relative to the BLAS-3 flops of a refactorization, as measured on igea
+  * cuts (2.4-3x): the plan compares times, not flop counts. */
+enum { FoldFlopWeight = 3 };
 
 /** \internal l := (l − conj(s) w) / c and w := c w − s l (new l), elementwise: one hyperbolic
   * rotation of a column pair (the downdate counterpart of rotateColumns()). */
@@ -161,7 +165,7 @@ bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index r
   * input changed, which are new or which went (read on dirty supernodes only). With \a force,
   * the top is as large as allowed. Sets ws.rank[c], for each refactored child c of the top, to
   * the rank bound of its update matrix's change (the caller resets it). \returns the estimated
-  * flops of the plan. */
+  * cost of the plan in refactorization flops (fold flops weighted by FoldFlopWeight). */
 template <typename Scalar, typename StorageIndex>
 double topUpdatePlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& dirty,
                      const std::vector<char>& eligible, const std::vector<Index>& changedColumns,
@@ -183,9 +187,9 @@ double topUpdatePlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std:
     const double nr = double(node.nrows()), nc = double(node.ncols), m = double(node.below());
     refactor[k] += frontFlops(node, removed);
     rankBoundary[k] = (std::min)(m, 2.0 * changedBelow[k]);
-    split[k] = updateChangeFlops(m, rankBoundary[k]);
+    split[k] = FoldFlopWeight * updateChangeFlops(m, rankBoundary[k]);
     if (eligible[s]) {
-      folded[k] = foldFlops(rankIn[k], nr, nc, double(start[k])) + childPart[k];
+      folded[k] = FoldFlopWeight * foldFlops(rankIn[k], nr, nc, double(start[k])) + childPart[k];
       rankOut[k] = (std::min)(m, rankIn[k]);
     } else {
       folded[k] = never;
@@ -214,7 +218,7 @@ double topUpdatePlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std:
     const auto& node = f.nodes[s];
     if (inTop[k]) {
       top.push_back(s);
-      total += foldFlops(rankIn[k], double(node.nrows()), double(node.ncols), double(start[k]));
+      total += FoldFlopWeight * foldFlops(rankIn[k], double(node.nrows()), double(node.ncols), double(start[k]));
     } else {
       bottom.push_back(s);
       total += frontFlops(node, removed);
