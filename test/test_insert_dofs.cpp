@@ -210,7 +210,8 @@ int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route,
     }
     const Eigen::UpdateStatistics& st = llt.lastUpdate();
     CHECK(st.flopFraction >= 0);
-    CHECK(st.flopFraction <= 1.0 + 1e-12);
+    if (route != Eigen::UpdateRoute::Mixed)  // (a forced Mixed route may cost more than a refactorization)
+      CHECK(st.flopFraction <= 1.0 + 1e-12);
     checkAgainstFresh<Cfg>(llt, withIdentityRows<Cfg>(G.template matrix<FullMatrix>(), removed), g, tolerance);
     // Dirichlet solve on the current (cut) matrix: A_II x_I = b_I - A_IB g, x_B = g
     const FullMatrix A = G.template matrix<FullMatrix>();

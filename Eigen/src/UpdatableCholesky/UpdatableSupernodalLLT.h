@@ -940,8 +940,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     }
   }
   UpdateRoute route = top.empty() ? UpdateRoute::PartialRefactorization : UpdateRoute::Mixed;
+  const bool forced = m_route != UpdateRoute::Automatic;  // (a forced Mixed or partial route stays)
   if (m_route == UpdateRoute::Refactorization || !m_numeric.hasCachedUpdates() ||
-      plannedFlops * threadCount() > 0.9 * totalFlops)
+      (!forced && plannedFlops * threadCount() > 0.9 * totalFlops))
     route = UpdateRoute::Refactorization;
   double spentFlops = route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops;
   auto run = [&]() -> Index {
