@@ -163,14 +163,15 @@ bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index r
   * it flagged in \a eligible: same rows, columns and input as before) to update by signed folds,
   * by a dynamic program on flop estimates. \a changedColumns: per supernode, its columns whose
   * input changed, which are new or which went (read on dirty supernodes only). With \a force,
-  * the top is as large as allowed. Sets ws.rank[c], for each refactored child c of the top, to
-  * the rank bound of its update matrix's change (the caller resets it). \returns the estimated
+  * the top is as large as allowed. Lists in \a boundary each refactored child c of the top with
+  * the rank bound of its update matrix's change. \returns the estimated
   * cost of the plan in refactorization flops (fold flops weighted by FoldFlopWeight). */
 template <typename Scalar, typename StorageIndex>
 double topUpdatePlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& dirty,
                      const std::vector<char>& eligible, const std::vector<Index>& changedColumns,
                      const char* removed, bool force,
-                     std::vector<Index>& bottom, std::vector<Index>& top, UpdateWorkspace<Scalar>& ws) {
+                     std::vector<Index>& bottom, std::vector<Index>& top,
+                     std::vector<std::pair<Index, Index> >& boundary, UpdateWorkspace<Scalar>& ws) {
   const Index count = Index(dirty.size());
   const double never = std::numeric_limits<double>::infinity();
   std::vector<double> refactor(count), folded(count), split(count), changedBelow(count), rankIn(count, 0.0),
@@ -212,6 +213,7 @@ double topUpdatePlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std:
   }
   bottom.clear();
   top.clear();
+  boundary.clear();
   double total = 0;
   for (Index k = 0; k < count; ++k) {
     const Index s = dirty[k], p = f.parent[s];
@@ -224,7 +226,7 @@ double topUpdatePlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std:
       total += frontFlops(node, removed);
       if (p != -1 && inTop[position[p] - 1]) {
         total += split[k];
-        ws.rank[s] = Index(rankBoundary[k]);
+        boundary.emplace_back(s, Index(rankBoundary[k]));
       }
     }
   }

@@ -912,6 +912,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   const double dirtyFlops = supernodeFlops(m_factor, dirty, removedFlags);
   const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
   std::vector<Index> bottom, top;
+  std::vector<std::pair<Index, Index> > boundary;
   double plannedFlops = dirtyFlops;
   if (m_route != UpdateRoute::PartialRefactorization && m_route != UpdateRoute::Refactorization &&
       m_numeric.hasCachedUpdates() && !dirty.empty()) {
@@ -931,7 +932,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     }
     const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
     const double planned = topUpdatePlan(m_factor, dirty, eligible, changedColumns, m_removedPermuted.data(), force,
-                                         bottom, top, m_workspace);
+                                         bottom, top, boundary, m_workspace);
     if (top.empty() || (!force && planned >= dirtyFlops)) {
       top.clear();
       bottom.clear();
@@ -957,17 +958,11 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       m_numeric.cache()[s].swap(backup.cache[s]);
     }
     const Index failed = m_numeric.refactorize(m_factor, numericInput(), bottom, threadCount());
-    if (failed >= 0) {
-      for (Index s : bottom) m_workspace.rank[s] = 0;
-      return failed;
-    }
+    if (failed >= 0) return failed;
     spentFlops = supernodeFlops(m_factor, bottom, removedFlags);
     bool captured = true;
-    for (Index s : bottom) {  // the refactored children of the top pass up the change of their update matrix
-      const Index p = m_factor.parent[s];
-      if (p == -1 || !std::binary_search(top.begin(), top.end(), p)) continue;
-      const Index m = m_factor.nodes[s].below(), rankBound = m_workspace.rank[s];
-      m_workspace.rank[s] = 0;
+    for (const auto& b : boundary) {  // the refactored children of the top pass up the change of their update matrix
+      const Index s = b.first, m = m_factor.nodes[s].below(), rankBound = b.second;
       eigen_assert(Index(backup.cache[s].size()) == m * m && "a refactored child of the top keeps its rows below");
       captured = captured && updateMatrixChange(m_numeric.cache()[s].data(), backup.cache[s].data(), m, rankBound,
                                                 m_workspace.carried[s], m_workspace.carriedNegative[s], spentFlops);
