@@ -8,8 +8,8 @@
 // memory traffic and by the fixed cost of each supernode. Small supernodes (the vast majority on
 // meshes) and up to four right-hand sides therefore go through inline kernels that read every
 // entry of L once per pass for all right-hand sides together, four columns at a time, with no
-// library call, while the next supernode's block is prefetched. Large supernodes and blocks of
-// more right-hand sides use the BLAS-2/3 kernels of DenseKernels.h.
+// library call, while the next column block and the next supernode are prefetched. Large
+// supernodes and blocks of more right-hand sides use the BLAS-2/3 kernels of DenseKernels.h.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_SOLVE_H
 #define EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_SOLVE_H
@@ -37,6 +37,15 @@ EIGEN_STRONG_INLINE void prefetchSupernode(const Supernode<Scalar, StorageIndex>
   for (Index b = 0; b < rowBytes; b += 64) internal::prefetch(r + b);
 }
 
+/** \internal Asks the memory system for the cache lines of [begin, end): the next column block of
+  * a supernode, requested while the current one is solved (several short column streams in one
+  * page defeat the hardware prefetcher). */
+template <typename Scalar>
+EIGEN_STRONG_INLINE void prefetchRange(const Scalar* begin, const Scalar* end) {
+  for (const char* p = reinterpret_cast<const char*>(begin); p < reinterpret_cast<const char*>(end); p += 64)
+    internal::prefetch(p);
+}
+
 /** \internal A packet with every lane equal to \a x. Real scalars use pset1. Complex ones are
   * built by an unaligned load of an array of copies: Eigen 3.4's pset1 for the complex<float>
   * packets (Packet2cf, Packet4cf, Packet8cf) reads the complex<float> through a double*, which
@@ -62,10 +71,11 @@ EIGEN_STRONG_INLINE Packet broadcastPacket(const Scalar& x) {
   * diagonal triangle, then v(i,:) -= L(i, block) x_block for every row i below the triangle, in
   * one loop that reads each of the B columns of L once. */
 template <int B, int K, typename Scalar>
-EIGEN_STRONG_INLINE void forwardColumnBlock(Index nr, Index j0, const Scalar* L, Scalar* v) {
+EIGEN_STRONG_INLINE void forwardColumnBlock(Index nr, Index nc, Index j0, const Scalar* L, Scalar* v) {
   const Scalar* l[B];
   Scalar x[B][K];
   for (int b = 0; b < B; ++b) l[b] = L + (j0 + b) * nr;
+  prefetchRange(L + (j0 + B) * nr + j0 + B, L + (std::min)(j0 + 2 * B, nc) * nr);  // the next block
   for (int b = 0; b < B; ++b) {
     const Scalar inverse = Scalar(1) / l[b][j0 + b];  // off the dependency chain of x
     for (int c = 0; c < K; ++c) {
@@ -105,6 +115,7 @@ template <int B, int K, typename Scalar>
 EIGEN_STRONG_INLINE void backwardColumnBlock(Index nr, Index j0, const Scalar* L, Scalar* v) {
   typedef typename packet_traits<Scalar>::type Packet;
   enum { Size = unpacket_traits<Packet>::size };
+  if (j0 >= 4) prefetchRange(L + (j0 - 4) * nr + j0 - 4, L + j0 * nr);  // the next block (the one before)
   const Scalar* l[B];
   Packet acc[B][K];
   for (int b = 0; b < B; ++b) {
@@ -152,11 +163,11 @@ void forwardSmallSupernode(const Supernode<Scalar, StorageIndex>& node, Scalar* 
     for (Index i = nc; i < nr; ++i) vc[i] = Scalar(0);
   }
   Index j = 0;
-  for (; j + 4 <= nc; j += 4) forwardColumnBlock<4, K>(nr, j, L, v);
+  for (; j + 4 <= nc; j += 4) forwardColumnBlock<4, K>(nr, nc, j, L, v);
   switch (nc - j) {
-    case 3: forwardColumnBlock<3, K>(nr, j, L, v); break;
-    case 2: forwardColumnBlock<2, K>(nr, j, L, v); break;
-    case 1: forwardColumnBlock<1, K>(nr, j, L, v); break;
+    case 3: forwardColumnBlock<3, K>(nr, nc, j, L, v); break;
+    case 2: forwardColumnBlock<2, K>(nr, nc, j, L, v); break;
+    case 1: forwardColumnBlock<1, K>(nr, nc, j, L, v); break;
     default: break;
   }
   const StorageIndex* rows = node.rows.data();

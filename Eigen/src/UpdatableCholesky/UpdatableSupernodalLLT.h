@@ -273,11 +273,37 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     eigen_assert(m_factorizationIsOk &&
                  "UpdatableSupernodalLLT::solve(): the factorization is missing or failed; check info().");
     eigen_assert(m_n == b.rows());
-    Matrix<Scalar, Dynamic, Dynamic> x = m_P * b;
+    Matrix<Scalar, Dynamic, Dynamic> x = permutedCopy(b);
     solveInPlacePermuted(x);
-    dest = m_Pinv * x;
+    unpermuteInto(x, dest);
   }
 #endif
+
+  /** \returns b in the permuted numbering, x(P(i), :) = b(i, :), written in order of x (a plain
+    * gather: Eigen's permutation product costs several times more on large systems). */
+  template <typename Rhs>
+  Matrix<Scalar, Dynamic, Dynamic> permutedCopy(const MatrixBase<Rhs>& b) const {
+    const Ref<const Matrix<Scalar, Dynamic, Dynamic> > from(b.derived());
+    Matrix<Scalar, Dynamic, Dynamic> x(m_n, from.cols());
+    const StorageIndex* inverse = m_Pinv.indices().data();
+    for (Index c = 0; c < from.cols(); ++c) {
+      const Scalar* bc = from.col(c).data();
+      Scalar* xc = x.col(c).data();
+      for (Index p = 0; p < m_n; ++p) xc[p] = bc[inverse[p]];
+    }
+    return x;
+  }
+
+  /** Writes the permuted block \a x back in the original numbering: dest(i, :) = x(P(i), :). */
+  template <typename Dest>
+  void unpermuteInto(const Matrix<Scalar, Dynamic, Dynamic>& x, MatrixBase<Dest>& dest) const {
+    dest.derived().resize(m_n, x.cols());
+    const StorageIndex* perm = m_P.indices().data();
+    for (Index c = 0; c < x.cols(); ++c) {
+      const Scalar* xc = x.col(c).data();
+      for (Index i = 0; i < m_n; ++i) dest.coeffRef(i, c) = xc[perm[i]];
+    }
+  }
 
   /** Solves \f$ L L^* x = b \f$ in place for a block already in the permuted numbering. */
   void solveInPlacePermuted(Matrix<Scalar, Dynamic, Dynamic>& x) const {
@@ -1032,7 +1058,7 @@ Matrix<typename MatrixType_::Scalar, Dynamic, Dynamic> UpdatableSupernodalLLT<Ma
                "UpdatableSupernodalLLT::solveDirichlet(): b and g must both be n x k");
   // Everything happens in the permuted numbering: b is permuted once, the removed rows take g,
   // the kept rows lose A_IB g_B (read from the columns of B only), then one solve.
-  Matrix<Scalar, Dynamic, Dynamic> x = m_P * b;
+  Matrix<Scalar, Dynamic, Dynamic> x = permutedCopy(b);
   if (!m_removedList.empty()) {
     const Ref<const Matrix<Scalar, Dynamic, Dynamic> > known(g.derived());
     std::vector<StorageIndex> columns(m_removedList.size());
@@ -1045,7 +1071,9 @@ Matrix<typename MatrixType_::Scalar, Dynamic, Dynamic> UpdatableSupernodalLLT<Ma
                                                             x.cols());
   }
   solveInPlacePermuted(x);
-  return m_Pinv * x;
+  Matrix<Scalar, Dynamic, Dynamic> result;
+  unpermuteInto(x, result);
+  return result;
 }
 
 }  // namespace Eigen
