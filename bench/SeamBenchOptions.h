@@ -22,6 +22,7 @@ struct SeamBenchOptions
   int grid = 0;
   std::vector<int> lengths{1, 5, 20, 100, 500, 2000};
   int seams = 5, threads = 1;
+  int repeats = 1;  ///< runs of every method per seam; the seam's sample is their median
   unsigned seed = 20240611u;
   std::string csvDir;
   bool smoke = false;
@@ -42,12 +43,13 @@ inline void printSeamBenchUsage(const SeamBenchNames& names)
 {
   const std::string pad(std::string(names.program).size(), ' ');
   std::cout << "usage: " << names.program << " [--mesh=PATH[,PATH...]]... [--grid=N] [--lengths=1,5,20,100,500,2000]\n"
-            << "       " << pad << " [--seams=5] [--threads=1] [--seed=S] [--csv-dir=DIR] [--smoke]\n"
+            << "       " << pad << " [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--smoke]\n"
             << "  --mesh=PATH     OFF mesh, plain or gzip; repeatable or comma-separated\n"
             << "                  (default: " << names.defaultMeshes << ")\n"
             << "  --grid=N        a generated N x N planar grid instead\n"
             << "  --lengths=LIST  seam lengths in vertices (default 1,5,20,100,500,2000)\n"
             << "  --seams=N       seams per length; medians are over them (default 5)\n"
+            << "  --repeats=R     runs of every method per seam, interleaved; the seam counts their median (default 1)\n"
             << "  --threads=N     threads of every solver: ours setThreadCount, OpenBLAS for CHOLMOD (default 1)\n"
             << "  --seed=S        base seed of the seams (default 20240611)\n"
             << "  --csv-dir=DIR   write " << names.csvStem << "_<mesh>.csv (medians), _samples.csv and _setup.csv there;\n"
@@ -77,6 +79,7 @@ inline bool parseSeamBenchOptions(int argc, char** argv, const SeamBenchNames& n
       });
     }
     else if (key == "--seams") good = parseInt(value, o.seams) && o.seams >= 1;
+    else if (key == "--repeats") good = parseInt(value, o.repeats) && o.repeats >= 1;
     else if (key == "--threads") good = parseInt(value, o.threads) && o.threads >= 1;
     else if (key == "--seed")
     {
@@ -105,6 +108,7 @@ inline bool parseSeamBenchOptions(int argc, char** argv, const SeamBenchNames& n
     o.grid = 24;
     o.lengths = {1, 5};
     o.seams = 1;
+    o.repeats = 1;
   }
   if (o.meshes.empty() && o.grid == 0)
     forEachListItem(names.defaultMeshes, [&](const std::string& s) { o.meshes.push_back(s); return true; });

@@ -68,6 +68,19 @@ private:
   std::vector<double> m_values;
 };
 
+/** Of several runs of one method on one input (each with `ok` and `ms`), the run of median time
+    among those that succeeded (the upper median for an even count); the first run when none did. */
+template <typename Sample>
+Sample medianRun(std::vector<Sample> runs)
+{
+  std::vector<Sample> good;
+  for (Sample& r : runs)
+    if (r.ok) good.push_back(std::move(r));
+  if (good.empty()) return std::move(runs.front());
+  std::sort(good.begin(), good.end(), [](const Sample& a, const Sample& b) { return a.ms < b.ms; });
+  return std::move(good[good.size() / 2]);
+}
+
 } // namespace bench
 
 #endif // UPDATABLE_CHOLESKY_BENCH_TIMING_H

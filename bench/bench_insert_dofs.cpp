@@ -19,7 +19,7 @@
 // a tiny grid once, for CI.
 //
 // Usage: bench_insert_dofs [--mesh=PATH[,PATH...]]... [--grid=N] [--lengths=1,5,20,100,500,2000]
-//                          [--seams=5] [--threads=1] [--seed=S] [--csv-dir=DIR] [--smoke]
+//                          [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--smoke]
 // Exit code: 0 if every answer was right, 1 otherwise, 2 on bad usage.
 
 #include <Eigen/UpdatableCholesky>
@@ -373,21 +373,25 @@ private:
   /** Runs every method on one cut, methods rotated by \a rotation. */
   std::vector<Sample> runSeam(const Cut& cut, int rotation)
   {
-    std::vector<Sample> samples(m_methods.size());
     const std::size_t count = m_methods.size();
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      const std::size_t k = (i + std::size_t(rotation)) % count;
-      try
+    std::vector<std::vector<Sample> > runs(count);
+    for (int repeat = 0; repeat < m_options.repeats; ++repeat)  // every method once per round
+      for (std::size_t i = 0; i < count; ++i)
       {
-        samples[k] = runMethod(m_methods[k], cut);
+        const std::size_t k = (i + std::size_t(rotation)) % count;
+        runs[k].emplace_back();
+        try
+        {
+          runs[k].back() = runMethod(m_methods[k], cut);
+        }
+        catch (const std::exception& e)
+        {
+          runs[k].back().ok = false;
+          runs[k].back().message = std::string("exception: ") + e.what();
+        }
       }
-      catch (const std::exception& e)
-      {
-        samples[k].ok = false;
-        samples[k].message = std::string("exception: ") + e.what();
-      }
-    }
+    std::vector<Sample> samples(count);
+    for (std::size_t k = 0; k < count; ++k) samples[k] = bench::medianRun(std::move(runs[k]));
     return samples;
   }
 
@@ -725,8 +729,9 @@ int main(int argc, char** argv)
   std::printf("bench_insert_dofs: %s\n", options.smoke ? "SMOKE run (tiny grid, l = 1,5, one seam)"
                                                       : "adding dofs by cutting seams (paper Fig. 6, insertion)");
   std::printf("  matrix cotan Laplacian + %.0e I; one METIS ordering per mesh given to every solver; seams: "
-              "Eigen::seamPath, %d per l, base seed %u, cut with Eigen::cutMesh along every piece\n",
-              kShift, options.seams, options.seed);
+              "Eigen::seamPath, %d per l, base seed %u, cut with Eigen::cutMesh along every piece; %d run(s) of every "
+              "method per seam, their median counts\n",
+              kShift, options.seams, options.seed, options.repeats);
   std::printf("  every time is update + one solve (b uniform in [-1,1]), methods interleaved per seam after one "
               "warm-up seam\n");
 

@@ -15,7 +15,7 @@
 // (plot it with plot_remove_dofs.sh). --smoke runs a tiny grid once, for CI.
 //
 // Usage: bench_remove_dofs [--mesh=PATH[,PATH...]]... [--grid=N] [--lengths=1,5,20,100,500,2000]
-//                          [--seams=5] [--threads=1] [--seed=S] [--csv-dir=DIR] [--smoke]
+//                          [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--smoke]
 // Exit code: 0 if every answer was right, 1 otherwise, 2 on bad usage.
 
 #include <Eigen/UpdatableCholesky>
@@ -410,21 +410,25 @@ private:
   std::vector<Sample> runSeam(const std::vector<int>& seam, int rotation)
   {
     for (int j : seam) m_inB[std::size_t(j)] = 1;
-    std::vector<Sample> samples(m_methods.size());
     const std::size_t count = m_methods.size();
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      const std::size_t k = (i + std::size_t(rotation)) % count;
-      try
+    std::vector<std::vector<Sample> > runs(count);
+    for (int repeat = 0; repeat < m_options.repeats; ++repeat)  // every method once per round
+      for (std::size_t i = 0; i < count; ++i)
       {
-        samples[k] = runMethod(m_methods[k], seam);
+        const std::size_t k = (i + std::size_t(rotation)) % count;
+        runs[k].emplace_back();
+        try
+        {
+          runs[k].back() = runMethod(m_methods[k], seam);
+        }
+        catch (const std::exception& e)
+        {
+          runs[k].back().ok = false;
+          runs[k].back().message = std::string("exception: ") + e.what();
+        }
       }
-      catch (const std::exception& e)
-      {
-        samples[k].ok = false;
-        samples[k].message = std::string("exception: ") + e.what();
-      }
-    }
+    std::vector<Sample> samples(count);
+    for (std::size_t k = 0; k < count; ++k) samples[k] = bench::medianRun(std::move(runs[k]));
     for (int j : seam) m_inB[std::size_t(j)] = 0;
     return samples;
   }
@@ -734,8 +738,8 @@ int main(int argc, char** argv)
   std::printf("bench_remove_dofs: %s\n", options.smoke ? "SMOKE run (tiny grid, l = 1,5, one seam)"
                                                       : "removing dofs along seams (paper Fig. 6)");
   std::printf("  matrix cotan Laplacian + %.0e I; one METIS ordering per mesh given to every solver; seams: "
-              "Eigen::seamPath, %d per l, base seed %u\n",
-              kShift, options.seams, options.seed);
+              "Eigen::seamPath, %d per l, base seed %u; %d run(s) of every method per seam, their median counts\n",
+              kShift, options.seams, options.seed, options.repeats);
   std::printf("  every time is update + Dirichlet solve (A_II x_I = b_I - A_IB g, x_B = g; b, g uniform in [-1,1]), "
               "methods interleaved per seam after one warm-up seam\n");
 
