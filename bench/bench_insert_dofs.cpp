@@ -14,7 +14,8 @@
 //   - Sherman-Morrison-Woodbury on blkdiag(A, I_m) with the factor of A (Yeung et al.; paper §3.5;
 //     WoodburyPeer.h) + solve.
 // Ours insert is checked by its backward error, ours remove by that of its Dirichlet system, every
-// other solution against ours insert (relative difference <= 1e-8). Prints medians per l with
+// other solution against ours insert (relative difference <= 1e-8, or else its own backward error
+// <= 1e-10: the cut system is ill-conditioned, so two right answers may differ). Prints medians per l with
 // ratios and flop fractions; optionally writes CSV (plot it with plot_insert_dofs.sh). --smoke runs
 // a tiny grid once, for CI.
 //
@@ -528,9 +529,25 @@ private:
       s.error = s.x.size() == ref.x.size() ? (s.x - ref.x).lpNorm<Eigen::Infinity>() / refNorm : kNaN;
       if (!(s.error <= kRelativeTolerance))
       {
+        // The cut Laplacian + 1e-8 I is ill-conditioned, so two right answers may differ by more
+        // than the tolerance (Woodbury's capacity matrix of a long seam loses digits): a peer
+        // that differs is still right when its own backward error on the cut system is small.
+        const double backward = s.x.size() == ref.x.size()
+                                    ? (cut.Acut * s.x - cut.b).lpNorm<Eigen::Infinity>() /
+                                          (bench::infinityNorm(cut.Acut) * s.x.lpNorm<Eigen::Infinity>() +
+                                           cut.b.lpNorm<Eigen::Infinity>())
+                                    : kNaN;
+        char buffer[200];
+        if (backward <= kBackwardTolerance)
+        {
+          std::printf("  note: %s (seam of %zu, %d copies) differs from ours by %.2e, its backward error %.1e is "
+                      "within %.0e\n",
+                      m_methods[k].key.c_str(), cut.seam.size(), cut.m, s.error, backward, kBackwardTolerance);
+          continue;
+        }
         s.ok = false;
-        char buffer[160];
-        std::snprintf(buffer, sizeof(buffer), "relative difference to ours %.2e > %.0e", s.error, kRelativeTolerance);
+        std::snprintf(buffer, sizeof(buffer), "relative difference to ours %.2e > %.0e, backward error %.2e > %.0e",
+                      s.error, kRelativeTolerance, backward, kBackwardTolerance);
         s.message = buffer;
       }
     }
