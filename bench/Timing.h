@@ -1,5 +1,6 @@
-// Timing: a monotonic stopwatch and a sample set with median/min/max, for benchmarks that report
-// medians over repetitions (the machines are noisy; a median ignores the odd slow run).
+// Timing: a monotonic stopwatch, a sample set with median/min/max, and interleaved repeated runs of
+// several methods with the median run of each, for benchmarks that report medians over repetitions
+// (the machines are noisy; a median ignores the odd slow run).
 
 #ifndef UPDATABLE_CHOLESKY_BENCH_TIMING_H
 #define UPDATABLE_CHOLESKY_BENCH_TIMING_H
@@ -7,6 +8,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
+#include <exception>
+#include <string>
 #include <limits>
 #include <vector>
 
@@ -68,17 +72,39 @@ private:
   std::vector<double> m_values;
 };
 
-/** Of several runs of one method on one input (each with `ok` and `ms`), the run of median time
-    among those that succeeded (the upper median for an even count); the first run when none did. */
-template <typename Sample>
-Sample medianRun(std::vector<Sample> runs)
+/** Runs \a count methods on one input \a repeats times, interleaved (round r runs every method
+    once, starting at method \a rotation), through runOne(k), which returns a Sample (with `ok`,
+    `message` and `ms`) or throws. \returns per method the run of median time among those that
+    succeeded (the upper median for an even count), or its first run when none did. */
+template <typename Sample, typename RunOne>
+std::vector<Sample> interleavedMedianRuns(std::size_t count, int repeats, int rotation, RunOne&& runOne)
 {
-  std::vector<Sample> good;
-  for (Sample& r : runs)
-    if (r.ok) good.push_back(std::move(r));
-  if (good.empty()) return std::move(runs.front());
-  std::sort(good.begin(), good.end(), [](const Sample& a, const Sample& b) { return a.ms < b.ms; });
-  return std::move(good[good.size() / 2]);
+  std::vector<std::vector<Sample> > runs(count);
+  for (int repeat = 0; repeat < repeats; ++repeat)
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const std::size_t k = (i + std::size_t(rotation)) % count;
+      runs[k].emplace_back();
+      try
+      {
+        runs[k].back() = runOne(k);
+      }
+      catch (const std::exception& e)
+      {
+        runs[k].back().ok = false;
+        runs[k].back().message = std::string("exception: ") + e.what();
+      }
+    }
+  std::vector<Sample> samples(count);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    std::vector<Sample*> good;
+    for (Sample& r : runs[k])
+      if (r.ok) good.push_back(&r);
+    std::sort(good.begin(), good.end(), [](const Sample* a, const Sample* b) { return a->ms < b->ms; });
+    samples[k] = std::move(good.empty() ? runs[k].front() : *good[good.size() / 2]);
+  }
+  return samples;
 }
 
 } // namespace bench

@@ -410,25 +410,8 @@ private:
   std::vector<Sample> runSeam(const std::vector<int>& seam, int rotation)
   {
     for (int j : seam) m_inB[std::size_t(j)] = 1;
-    const std::size_t count = m_methods.size();
-    std::vector<std::vector<Sample> > runs(count);
-    for (int repeat = 0; repeat < m_options.repeats; ++repeat)  // every method once per round
-      for (std::size_t i = 0; i < count; ++i)
-      {
-        const std::size_t k = (i + std::size_t(rotation)) % count;
-        runs[k].emplace_back();
-        try
-        {
-          runs[k].back() = runMethod(m_methods[k], seam);
-        }
-        catch (const std::exception& e)
-        {
-          runs[k].back().ok = false;
-          runs[k].back().message = std::string("exception: ") + e.what();
-        }
-      }
-    std::vector<Sample> samples(count);
-    for (std::size_t k = 0; k < count; ++k) samples[k] = bench::medianRun(std::move(runs[k]));
+    std::vector<Sample> samples = bench::interleavedMedianRuns<Sample>(
+        m_methods.size(), m_options.repeats, rotation, [&](std::size_t k) { return runMethod(m_methods[k], seam); });
     for (int j : seam) m_inB[std::size_t(j)] = 0;
     return samples;
   }
