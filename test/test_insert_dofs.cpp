@@ -73,6 +73,32 @@ struct SplitGraph {
   }
 };
 
+/** Merges every copy \a c with \a copyOf[c] >= 0 back into that dof (its edges move there; the dofs
+  * after it move down). \returns mergeDofs()'s origin vector (by current dof). */
+template <typename Scalar>
+std::vector<int> mergeCopies(SplitGraph<Scalar>& G, const std::vector<Index>& copyOf) {
+  std::vector<int> origin(G.n);
+  std::vector<Index> newIndex(G.n, -1);
+  Index next = 0;
+  for (Index i = 0; i < G.n; ++i) {
+    origin[i] = copyOf[i] >= 0 ? int(copyOf[i]) : int(i);
+    if (copyOf[i] < 0) newIndex[i] = next++;
+  }
+  auto target = [&](Index i) { return newIndex[copyOf[i] >= 0 ? copyOf[i] : i]; };
+  std::map<std::pair<Index, Index>, Scalar> edges;
+  for (const auto& e : G.edges) {
+    const Index i = target(e.first.first), j = target(e.first.second);
+    if (i != j) edges[std::make_pair((std::min)(i, j), (std::max)(i, j))] += e.second;
+  }
+  std::vector<typename SplitGraph<Scalar>::Real> margin(next);
+  for (Index i = 0; i < G.n; ++i)
+    if (copyOf[i] < 0) margin[newIndex[i]] = G.margin[i];
+  G.edges.swap(edges);
+  G.margin.swap(margin);
+  G.n = next;
+  return origin;
+}
+
 template <typename Cfg>
 SplitGraph<typename Cfg::Scalar> graphOf(const typename Cfg::FullMatrix& A) {
   SplitGraph<typename Cfg::Scalar> G;
@@ -261,6 +287,61 @@ TEST_CASE_TEMPLATE("insertDofs/mergeDofs sequences match a fresh factorization",
     const int mixed = randomSequence<Cfg>(A, Eigen::UpdateRoute::Mixed, steps, 8);
     if (Cfg::isPrimary) CHECK(mixed > 0);
   }
+}
+
+TEST_CASE_TEMPLATE("merges of older copies and long cut/merge chains", Cfg, UC_CORE_CONFIGS) {
+  // Merging a copy that is not among the last dofs renumbers the dofs after it (the solver then
+  // rebuilds its copy of the matrix); long chains of cuts and merges leave garbage in that copy
+  // until it is compacted. Both are checked against fresh factorizations at every step.
+  typedef typename Cfg::FullMatrix FullMatrix;
+  std::mt19937 g(11);
+  SplitGraph<typename Cfg::Scalar> G = graphOf<Cfg>(meshLaplacian<Cfg>(false));
+  typename Cfg::Solver llt;
+  llt.compute(toInput<Cfg>(G.template matrix<FullMatrix>()));
+  REQUIRE(llt.info() == Eigen::Success);
+  std::vector<Index> copyOf(G.n, -1);  // per dof: the dof it copies, or -1
+  const int steps = Cfg::isPrimary ? 40 : 12;
+  int olderMerges = 0;
+  for (int step = 0; step < steps; ++step) {
+    CAPTURE(step);
+    std::vector<Index> copies;
+    for (Index i = 0; i < G.n; ++i)
+      if (copyOf[i] >= 0) copies.push_back(i);
+    if (copies.empty() || g() % 3 != 0) {  // cut a few more vertices (never a copy)
+      std::vector<int> origins;
+      for (int k = 0; k < 4; ++k) {
+        const int v = int(g() % G.n);
+        if (copyOf[v] < 0 && std::find(origins.begin(), origins.end(), v) == origins.end()) origins.push_back(v);
+      }
+      const std::vector<int> origin = G.split(origins, g);
+      copyOf.resize(G.n, -1);
+      for (Index c = Index(copyOf.size() - origins.size()); c < G.n; ++c) copyOf[c] = origin[c];
+      llt.insertDofs(toInput<Cfg>(G.template matrix<FullMatrix>()), origin);
+    } else {  // merge a random half of the copies, old ones included
+      std::vector<Index> merge(G.n, -1);
+      bool older = false;
+      for (Index c : copies)
+        if (g() % 2) {
+          merge[c] = copyOf[c];
+          older = older || c + 8 < G.n;
+        }
+      olderMerges += older;
+      const std::vector<int> origin = mergeCopies(G, merge);
+      std::vector<Index> next;
+      for (Index i = 0; i < Index(copyOf.size()); ++i)
+        if (merge[i] < 0) next.push_back(copyOf[i]);
+      // a copy's origin never moves down past a merged dof: renumber the survivors' origins
+      std::vector<Index> shift(copyOf.size() + 1, 0);
+      for (Index i = 0; i < Index(copyOf.size()); ++i) shift[i + 1] = shift[i] + (merge[i] >= 0);
+      for (Index& o : next)
+        if (o >= 0) o -= shift[o];
+      copyOf.swap(next);
+      llt.mergeDofs(toInput<Cfg>(G.template matrix<FullMatrix>()), origin);
+    }
+    REQUIRE(llt.info() == Eigen::Success);
+    checkAgainstFresh<Cfg>(llt, G.template matrix<FullMatrix>(), g, lowRankTolerance<Cfg>());
+  }
+  if (Cfg::isPrimary) CHECK(olderMerges > 0);
 }
 
 TEST_CASE_TEMPLATE("insertDofs refactors only the dirty part", Cfg, uctest::d_int_col_lower_amd) {

@@ -1,21 +1,23 @@
 // DofInsertionInput.h — how the input side of the solver follows insertDofs()/mergeDofs()
 // without a pass that rebuilds it from the whole new matrix (paper §4.2: only the dirty part
-// of the factor is touched; here the same holds for the maps that feed it).
+// of the factor is touched; here the same holds, as far as it can, for what feeds it).
 //
-// The solver keeps, besides the factor, a copy of the matrix (pattern and values), the strict
-// upper pattern of C = P A P^T (for dirty-path marking) and, per supernode, an assembly map
-// from the value array into the supernode's block. After a cut or merge:
-//   - diffInput() compares the new matrix with the current one column by column; a column whose
-//     entries and values are the same (the vast majority) costs a sequential compare, and gives
-//     a position map old value position -> new one. Differing columns are matched entry by entry:
-//     the dofs they touch are "changed", the entries the old matrix did not have are "fresh".
-//   - remapAssemblyMaps(): a clean supernode's entries all survive with the same row positions,
-//     so only their source positions are mapped; a dirty supernode's map is rebuilt from its old
-//     map (surviving entries, new row positions) plus the fresh entries of its columns.
+// The solver keeps, besides the factor, the kept triangle of the matrix (InputStore.h), the
+// strict upper pattern of C = P A P^T (for dirty-path marking) and, per supernode, an assembly
+// map from store positions into the supernode's block. After a cut or merge:
+//   - diffInput() compares the new matrix with the store outer vector by outer vector; one whose
+//     kept entries and values are the same (the vast majority) costs a sequential compare and,
+//     for an insertion or the merge of trailing dofs, nothing else: it stays where it is in the
+//     store. A differing one is matched entry by entry (the dofs it touches are "changed", the
+//     entries the old matrix did not have are "fresh") and rewritten at the end of the store;
+//     a position map says where each old entry of it went. Otherwise (dofs renumbered, or a
+//     store with too much garbage) the store is rebuilt compactly and every position maps.
+//   - remapAssemblyMaps(): a clean supernode keeps its map, or maps its sources through the
+//     position map when it owns an entry that moved; a dirty supernode's map is rebuilt from its
+//     old map (surviving entries, new row positions) plus the fresh entries of its columns.
 //   - remapUpperPattern(): an unchanged dof keeps its neighbours (renumbered); a changed one
 //     keeps its unchanged neighbours and gets its changed neighbours from the new matrix.
-// All of it is O(nnz) in simple sequential passes (no sorting, no scattered rebuild), and the
-// scratch arrays live in the solver between calls.
+// The scratch arrays live in the solver between calls.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_DOF_INSERTION_INPUT_H
 #define EIGEN_UPDATABLE_CHOLESKY_DOF_INSERTION_INPUT_H
@@ -38,135 +40,241 @@ struct FreshEntry {
 };
 
 /** \internal The result of diffInput() and the scratch space of the insertions, kept by the
-  * solver between calls so that they allocate (and fault in) nothing proportional to nnz: the
-  * spare pattern, values and upper pattern are the previous matrix's, swapped back and forth. */
+  * solver between calls so that they allocate (and fault in) nothing proportional to nnz. */
 template <typename Scalar, typename StorageIndex>
 struct InputDiff {
+  /** A rewritten (or dropped) outer vector of the store and its previous range, for a revert. */
+  struct Rewrite {
+    Index outer, begin, end;
+  };
   std::vector<char> changed;    ///< by current dof: its row/column differs in the new matrix (or it goes)
-  std::vector<StorageIndex> posMap;  ///< current value position -> new position, -1 for an entry that is gone
-  std::vector<Index> fresh;     ///< new positions of kept-triangle entries the current matrix lacks
+  /** previous store position -> new one (-1: the entry is gone); between calls the identity on
+    * every live position, so that an insertion writes only the positions it moves */
+  std::vector<StorageIndex> posMap;
+  bool posMapIsIdentity = false;  ///< false after the store was assigned anew (analyzePattern())
+  bool inPlace = false;         ///< the last diff rewrote outer vectors in place (else rebuilt the store)
+  std::vector<Rewrite> rewrites;  ///< in place: the outer vectors rewritten or dropped
+  Index oldPool = 0, oldOuter = 0, oldLive = 0;  ///< in place: the store's previous extent
+  std::vector<Index> fresh;     ///< new store positions of entries the current matrix lacks
   std::vector<StorageIndex> freshOuter;  ///< the outer index (new numbering) of each fresh entry
   std::vector<Index> stamp;     ///< scratch by current dof, all -1 between uses
   std::vector<StorageIndex> position;    ///< scratch by new permuted row, all -1 between uses
-  InputPattern<StorageIndex> sparePattern;      ///< buffers for the next matrix's pattern,
-  std::vector<Scalar> spareValues;              ///< values
-  CompressedPattern<StorageIndex> spareUpper;   ///< and strict upper pattern of C
+  InputStore<Scalar, StorageIndex> spare;  ///< rebuilt: the previous store (the revert)
+  CompressedPattern<StorageIndex> spareUpper;   ///< buffers for the next strict upper pattern of C
+
+  /** Makes posMap the identity on the positions of \a store. */
+  void resetPositions(const InputStore<Scalar, StorageIndex>& store) {
+    posMap.resize(store.inner.size());
+    for (Index q = 0; q < Index(posMap.size()); ++q) posMap[q] = StorageIndex(q);
+    posMapIsIdentity = true;
+  }
+
+  /** Puts \a store back as it was before the last diffInput() (its previous entries are still in
+    * place, or in the spare) and posMap back to the identity on it. */
+  void revert(InputStore<Scalar, StorageIndex>& store) {
+    if (!inPlace) {
+      std::swap(store, spare);
+      resetPositions(store);
+      return;
+    }
+    store.begin.resize(oldOuter);
+    store.end.resize(oldOuter);
+    store.rows = store.cols = oldOuter;
+    for (const Rewrite& r : rewrites) {
+      store.begin[r.outer] = r.begin;
+      store.end[r.outer] = r.end;
+      for (Index q = r.begin; q < r.end; ++q) posMap[q] = StorageIndex(q);
+    }
+    store.inner.resize(oldPool);
+    store.values.resize(oldPool);
+    store.live = oldLive;
+    posMap.resize(oldPool);
+    rewrites.clear();
+  }
+
+  /** After a successful update: posMap becomes the identity on the new store. */
+  void commit(const InputStore<Scalar, StorageIndex>& store) {
+    if (!inPlace) {
+      resetPositions(store);
+      return;
+    }
+    const Index before = Index(posMap.size());
+    posMap.resize(store.inner.size());
+    for (Index q = before; q < Index(posMap.size()); ++q) posMap[q] = StorageIndex(q);
+    rewrites.clear();
+  }
 
   /** Bytes held by the scratch arrays and spare buffers. */
   Index bytes() const {
     return Index(changed.capacity() + (stamp.capacity() + fresh.capacity()) * sizeof(Index) +
-                 (posMap.capacity() + freshOuter.capacity() + position.capacity()) * sizeof(StorageIndex) +
-                 (sparePattern.outer.capacity() + sparePattern.inner.capacity() + spareUpper.idx.capacity()) *
+                 (posMap.capacity() + freshOuter.capacity() + position.capacity() + spareUpper.idx.capacity()) *
                      sizeof(StorageIndex) +
-                 spareUpper.ptr.capacity() * sizeof(Index) + spareValues.capacity() * sizeof(Scalar));
+                 spareUpper.ptr.capacity() * sizeof(Index) + spare.bytes() + rewrites.capacity() * sizeof(Rewrite));
   }
 };
 
 /** \internal Compares the new compressed matrix (\a outer, \a inner, \a values, \a total outer
-  * vectors) with the current one (\a old, \a oldValues), where \a oldOfNew maps a new dof to its
-  * current one (-1 for a copy). Only the UpLo triangle counts. Fills \a d (changed, posMap, fresh);
-  * \a allowed(x, y) is asked about each fresh off-diagonal entry (new numbering) and a false
-  * answer stops the comparison with false. */
+  * vectors) with the stored current one \a store, where \a oldOfNew maps a new dof to its current
+  * one (-1 for a copy). Only the UpLo triangle counts. Leaves the new matrix in \a store (in place
+  * when the numbering of the kept dofs does not change, else rebuilt; d.revert() undoes it) and
+  * fills \a d (changed, posMap, fresh). \a allowed(x, y) is asked about each fresh off-diagonal
+  * entry (new numbering); a false answer stops the comparison with false and the store unchanged. */
 template <int UpLo, bool RowMajor, typename Scalar, typename StorageIndex, typename Allowed>
-bool diffInput(const InputPattern<StorageIndex>& old, const Scalar* oldValues, const StorageIndex* outer,
-               const StorageIndex* inner, const Scalar* values, Index total,
-               const std::vector<StorageIndex>& oldOfNew, const std::vector<StorageIndex>& newOfOld,
-               InputDiff<Scalar, StorageIndex>& d, Allowed&& allowed) {
-  const Index n = old.cols;
-  auto kept = [](Index o, Index i) {  // outer index o, inner index i
-    const Index row = RowMajor ? o : i, col = RowMajor ? i : o;
-    return UpLo == Lower ? row >= col : row <= col;
-  };
+bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* outer, const StorageIndex* inner,
+               const Scalar* values, Index total, const std::vector<StorageIndex>& oldOfNew,
+               const std::vector<StorageIndex>& newOfOld, InputDiff<Scalar, StorageIndex>& d, Allowed&& allowed) {
+  const Index n = store.outerSize();
   d.changed.assign(n, 0);
   d.stamp.resize(n, -1);
-  d.posMap.resize(old.inner.size());
   d.fresh.clear();
   d.freshOuter.clear();
-  const StorageIndex* oldOuter = old.outer.data();
-  const StorageIndex* oldInner = old.inner.data();
-  // new dofs below this one are the current dofs of the same index (all old ones for an insertion)
+  d.rewrites.clear();
+  if (!d.posMapIsIdentity || Index(d.posMap.size()) != Index(store.inner.size())) d.resetPositions(store);
+  // kept dofs below this one keep their index (all old ones for an insertion)
   Index identityBelow = 0;
   while (identityBelow < total && oldOfNew[identityBelow] == identityBelow) ++identityBelow;
+  d.inPlace = identityBelow >= (std::min)(n, total) && !store.wasteful();
+  d.oldPool = Index(store.inner.size());
+  d.oldOuter = n;
+  d.oldLive = store.live;
+  if (!d.inPlace) {  // the new matrix goes to the spare, which then changes places with the store
+    d.spare.rows = d.spare.cols = total;
+    d.spare.inner.clear();
+    d.spare.values.clear();
+    d.spare.inner.reserve(store.live + store.live / 8 + total);
+    d.spare.values.reserve(store.live + store.live / 8 + total);
+  }
+  InputStore<Scalar, StorageIndex>& out = d.inPlace ? store : d.spare;
+  out.begin.resize((std::max)(n, total));
+  out.end.resize((std::max)(n, total));
+  auto kept = [](Index o, Index i) { return inKeptTriangle<UpLo, RowMajor>(o, i); };
   for (Index x = 0; x < total; ++x) {
     const Index ox = oldOfNew[x];
     const Index nb = outer[x], ne = outer[x + 1];
-    if (ox >= 0) {
-      const Index ob = oldOuter[ox], oe = oldOuter[ox + 1], len = ne - nb;
-      bool same = oe - ob == len;
-      if (same && len > 0) {  // bitwise the same indices and values (a sequential compare) ...
-        same = std::memcmp(inner + nb, oldInner + ob, len * sizeof(StorageIndex)) == 0 &&
-               std::memcmp(values + nb, oldValues + ob, len * sizeof(Scalar)) == 0;
-        for (Index k = 0; same && k < len && identityBelow < n; ++k) same = inner[nb + k] < identityBelow;
-        if (!same && oe - ob == len) {  // ... or the same dofs and values under the renumbering
-          same = true;
-          for (Index k = 0; same && k < len; ++k)
-            same = oldOfNew[inner[nb + k]] == oldInner[ob + k] && values[nb + k] == oldValues[ob + k];
-        }
+    const Index ob = ox >= 0 ? store.begin[ox] : 0, oe = ox >= 0 ? store.end[ox] : 0;
+    if (ox >= 0) {  // the same kept entries and values, under the renumbering?
+      Index q = ob;
+      bool same = true;
+      for (Index p = nb; p < ne && same; ++p) {
+        const Index y = inner[p];
+        if (!kept(x, y)) continue;
+        same = q < oe && oldOfNew[y] == store.inner[q] && values[p] == store.values[q];
+        ++q;
       }
-      if (same) {  // the common case: the column moved as a whole
-        for (Index k = 0; k < len; ++k) d.posMap[ob + k] = StorageIndex(nb + k);
+      if (same && q == oe) {  // the common case: the outer vector stays (in place) or moves as a whole
+        if (!d.inPlace) {
+          out.begin[x] = Index(out.inner.size());
+          for (Index p = nb, r = ob; p < ne; ++p) {
+            if (!kept(x, inner[p])) continue;
+            d.posMap[r++] = StorageIndex(out.inner.size());
+            out.inner.push_back(inner[p]);
+            out.values.push_back(values[p]);
+          }
+          out.end[x] = Index(out.inner.size());
+        }
         continue;
       }
-      for (Index p = ob; p < oe; ++p) {
-        d.posMap[p] = -1;
-        if (kept(ox, oldInner[p])) d.stamp[oldInner[p]] = p;
+      for (Index q2 = ob; q2 < oe; ++q2) {
+        d.posMap[q2] = -1;
+        d.stamp[store.inner[q2]] = q2;
       }
+      if (d.inPlace) d.rewrites.push_back(typename InputDiff<Scalar, StorageIndex>::Rewrite{x, ob, oe});
     }
+    const Index start = Index(out.inner.size());
     for (Index p = nb; p < ne; ++p) {
       const Index y = inner[p];
       if (!kept(x, y)) continue;
+      const Index np = Index(out.inner.size());
+      out.inner.push_back(StorageIndex(y));
+      out.values.push_back(values[p]);
       const Index oy = oldOfNew[y];
       if (ox >= 0 && oy >= 0 && d.stamp[oy] >= 0) {  // an entry the current matrix has
-        if (!(values[p] == oldValues[d.stamp[oy]])) d.changed[ox] = d.changed[oy] = 1;
-        d.posMap[d.stamp[oy]] = StorageIndex(p);
+        if (!(values[p] == store.values[d.stamp[oy]])) d.changed[ox] = d.changed[oy] = 1;
+        d.posMap[d.stamp[oy]] = StorageIndex(np);
         d.stamp[oy] = -2;
         continue;
       }
       if (x != y && !allowed(x, y)) {
-        if (ox >= 0)
-          for (Index q = oldOuter[ox]; q < oldOuter[ox + 1]; ++q) d.stamp[oldInner[q]] = -1;
+        for (Index q = ob; q < oe; ++q) d.stamp[store.inner[q]] = -1;
+        if (!d.inPlace) std::swap(store, d.spare);  // (revert() swaps back)
+        d.revert(store);
         return false;
       }
       if (ox >= 0) d.changed[ox] = 1;
       if (oy >= 0) d.changed[oy] = 1;
-      d.fresh.push_back(p);
+      d.fresh.push_back(np);
       d.freshOuter.push_back(StorageIndex(x));
     }
-    if (ox >= 0)
-      for (Index p = oldOuter[ox]; p < oldOuter[ox + 1]; ++p) {
-        const Index y = oldInner[p];
-        if (d.stamp[y] >= 0) d.changed[ox] = d.changed[y] = 1;  // an entry that is gone
-        d.stamp[y] = -1;
-      }
+    out.begin[x] = start;
+    out.end[x] = Index(out.inner.size());
+    for (Index q = ob; q < oe; ++q) {
+      const Index y = store.inner[q];
+      if (d.stamp[y] >= 0) d.changed[ox] = d.changed[y] = 1;  // an entry that is gone
+      d.stamp[y] = -1;
+    }
   }
   for (Index o = 0; o < n; ++o) {  // merged dofs: every entry of theirs is gone
     if (newOfOld[o] >= 0) continue;
     d.changed[o] = 1;
-    for (Index p = oldOuter[o]; p < oldOuter[o + 1]; ++p) {
-      d.changed[oldInner[p]] = 1;
-      d.posMap[p] = -1;
+    for (Index q = store.begin[o]; q < store.end[o]; ++q) {
+      d.changed[store.inner[q]] = 1;
+      d.posMap[q] = -1;
     }
+    if (d.inPlace) d.rewrites.push_back(typename InputDiff<Scalar, StorageIndex>::Rewrite{o, store.begin[o], store.end[o]});
+  }
+  out.begin.resize(total);
+  out.end.resize(total);
+  out.rows = out.cols = total;
+  if (d.inPlace) {
+    Index dropped = 0;
+    for (const auto& r : d.rewrites) dropped += r.end - r.begin;
+    store.live = d.oldLive - dropped + (Index(store.inner.size()) - d.oldPool);
+  } else {
+    out.live = Index(out.inner.size());
+    std::swap(store, d.spare);
   }
   return true;
 }
 
+/** \internal The supernodes (old numbering, before relabelFactor()) owning an entry of an outer
+  * vector that an in-place diffInput() rewrote: their assembly maps must follow the entries. */
+template <typename Scalar, typename StorageIndex>
+std::vector<Index> ownersOfRewrites(const SupernodalFactor<Scalar, StorageIndex>& f,
+                                    const InputStore<Scalar, StorageIndex>& store,
+                                    const InputDiff<Scalar, StorageIndex>& d, const StorageIndex* perm) {
+  std::vector<Index> owners;
+  for (const auto& r : d.rewrites)
+    for (Index q = r.begin; q < r.end; ++q) {
+      const Index pi = perm[r.outer], pj = perm[store.inner[q]];
+      owners.push_back(f.colToSuper[(std::min)(pi, pj)]);
+    }
+  std::sort(owners.begin(), owners.end());
+  owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
+  return owners;
+}
+
 /** \internal Renews every supernode's assembly map after relabelFactor(): clean supernodes map
-  * their sources through \a posMap; dirty ones (\a dirty) are rebuilt from their old maps (kept in
+  * their sources through \a posMap (only those in \a movedOwners, when given: the others' entries
+  * stayed where they were); dirty ones (\a dirty) are rebuilt from their old maps (kept in
   * the nodes; old rows, first columns and column counts in \a backup) and the \a fresh entries,
   * column by column like every map. */
 template <typename Scalar, typename StorageIndex>
 void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorStructureBackup<Scalar, StorageIndex>& backup,
                        const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
                        const std::vector<Index>& dirty, const std::vector<StorageIndex>& posMap,
-                       std::vector<FreshEntry<StorageIndex> >& fresh, std::vector<StorageIndex>& position) {
-  const Index ns = f.count();
-  for (Index s = 0; s < ns; ++s) {
-    if (mark[s]) continue;
+                       std::vector<FreshEntry<StorageIndex> >& fresh, std::vector<StorageIndex>& position,
+                       const std::vector<Index>* movedOwners) {
+  auto remapClean = [&](Index s) {
+    if (mark[s]) return;
     for (Index& src : f.nodes[s].assemblySource) {
       src = posMap[src];
       eigen_assert(src >= 0 && "remapAssemblyMaps: an entry of a clean supernode is gone");
     }
-  }
+  };
+  if (movedOwners)
+    for (Index s : *movedOwners) remapClean(s);
+  else
+    for (Index s = 0; s < f.count(); ++s) remapClean(s);
   std::sort(fresh.begin(), fresh.end(), [&](const FreshEntry<StorageIndex>& a, const FreshEntry<StorageIndex>& b) {
     return f.colToSuper[a.col] < f.colToSuper[b.col];
   });

@@ -1,11 +1,11 @@
 // MatrixAssembly.h — reading the user's sparse matrix into the supernodal factor.
 //
 // The input may be column- or row-major, compressed or not, and the solver reads only its
-// UpLo triangle (diagonal included). Analysis records the input's pattern (to reject a later
-// factorize with another pattern), permutes the kept triangle into the lower triangle of
-// C = P A P^T (conjugating entries that cross the diagonal), and builds, per supernode, a map
-// from the input's value array to offsets in the supernode's dense block. A numeric
-// factorization then scatters values straight from the user's array, with no permuted copy.
+// UpLo triangle (diagonal included), which it keeps in an InputStore (InputStore.h). Analysis
+// permutes that triangle into the lower triangle of C = P A P^T (conjugating entries that cross
+// the diagonal) and builds, per supernode, a map from positions in the store to offsets in the
+// supernode's dense block. A numeric factorization then scatters values straight from the store,
+// with no permuted copy.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_MATRIX_ASSEMBLY_H
 #define EIGEN_UPDATABLE_CHOLESKY_MATRIX_ASSEMBLY_H
@@ -17,28 +17,6 @@ namespace Eigen {
 namespace internal {
 namespace updatable_cholesky {
 
-/** \internal The pattern of the input as given (outer starts and inner indices, compressed). */
-template <typename StorageIndex>
-struct InputPattern {
-  Index rows = 0, cols = 0;
-  std::vector<StorageIndex> outer, inner;
-
-  template <typename CompressedMatrix>
-  void assign(const CompressedMatrix& a) {
-    rows = a.rows();
-    cols = a.cols();
-    outer.assign(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1);
-    inner.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
-  }
-  /** True when \a a (compressed) has exactly this pattern. */
-  template <typename CompressedMatrix>
-  bool matches(const CompressedMatrix& a) const {
-    if (a.rows() != rows || a.cols() != cols || Index(a.nonZeros()) != Index(inner.size())) return false;
-    if (std::memcmp(a.outerIndexPtr(), outer.data(), outer.size() * sizeof(StorageIndex)) != 0) return false;
-    return inner.empty() || std::memcmp(a.innerIndexPtr(), inner.data(), inner.size() * sizeof(StorageIndex)) == 0;
-  }
-};
-
 /** \internal The kept triangle of C = P A P^T stored by columns: column j holds rows i >= j and,
   * for each, the position of its value in the input's value array (~position when the value
   * must be conjugated because the entry crossed the diagonal). */
@@ -48,21 +26,19 @@ struct PermutedLowerEntries {
   std::vector<Index> source;
 };
 
-/** \internal Permutes the UpLo triangle of the compressed input \a a by \a perm (perm[old] = new)
-  * into the lower triangle. Optionally also returns the strict upper triangle by columns. */
-template <int UpLo, typename CompressedMatrix, typename StorageIndex>
-void permuteTriangle(const CompressedMatrix& a, const std::vector<StorageIndex>& perm,
+/** \internal Permutes the stored kept triangle \a a (outer vectors rows when \a RowMajor) by
+  * \a perm (perm[old] = new) into the lower triangle; the sources are pool positions of \a a.
+  * Optionally also returns the strict upper triangle by columns. */
+template <bool RowMajor, typename Scalar, typename StorageIndex>
+void permuteTriangle(const InputStore<Scalar, StorageIndex>& a, const std::vector<StorageIndex>& perm,
                      PermutedLowerEntries<StorageIndex>& lower, CompressedPattern<StorageIndex>* upper) {
-  const Index n = a.cols();
-  const bool rowMajor = CompressedMatrix::IsRowMajor;
-  const StorageIndex* outer = a.outerIndexPtr();
-  const StorageIndex* inner = a.innerIndexPtr();
+  const Index n = a.cols;
+  const StorageIndex* inner = a.inner.data();
   auto forEachKept = [&](auto&& visit) {
     for (Index o = 0; o < a.outerSize(); ++o)
-      for (Index p = outer[o]; p < outer[o + 1]; ++p) {
-        const Index row = rowMajor ? o : Index(inner[p]);
-        const Index col = rowMajor ? Index(inner[p]) : o;
-        if ((UpLo == Lower && row < col) || (UpLo == Upper && row > col)) continue;
+      for (Index p = a.begin[o]; p < a.end[o]; ++p) {
+        const Index row = RowMajor ? o : Index(inner[p]);
+        const Index col = RowMajor ? Index(inner[p]) : o;
         const Index pi = perm[row], pj = perm[col];
         // Entry A(row,col) is C(pi,pj); stored in the lower triangle as C(max,min), conjugated
         // when it crossed the diagonal.

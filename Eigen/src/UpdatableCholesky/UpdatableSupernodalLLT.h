@@ -254,10 +254,11 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   const UpdateStatistics& lastUpdate() const { return m_lastUpdate; }
   //@}
 
-  /** \returns the bytes held by the factor (values and row indices) and its workspace (including
-    * the scratch and spare buffers that insertDofs()/mergeDofs() keep between calls). */
+  /** \returns the bytes held by the factor (values and row indices), its copy of the matrix and
+    * its workspace (including the scratch and spare buffers that insertDofs()/mergeDofs() keep
+    * between calls). */
   Index memoryBytes() const {
-    Index b = m_numeric.workspaceBytes() + m_inputDiff.bytes();
+    Index b = m_numeric.workspaceBytes() + m_inputDiff.bytes() + m_store.bytes();
     for (const auto& node : m_factor.nodes)
       b += Index(node.values.size() * sizeof(Scalar) + node.rows.capacity() * sizeof(StorageIndex) +
                  node.parentPosition.capacity() * sizeof(StorageIndex) +
@@ -339,7 +340,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   typedef internal::updatable_cholesky::SupernodalFactor<Scalar, StorageIndex> Factor;
   Factor m_factor;
   internal::updatable_cholesky::SupernodalNumeric<Scalar, StorageIndex> m_numeric;
-  internal::updatable_cholesky::InputPattern<StorageIndex> m_pattern;
+  internal::updatable_cholesky::InputStore<Scalar, StorageIndex> m_store;  ///< kept triangle of the current matrix
   PermutationType m_P, m_Pinv;
   OrderingType m_ordering;
   SupernodeRelaxation m_relaxation;
@@ -351,7 +352,6 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   mutable CholMatrixType m_sparseL;
   mutable bool m_sparseLIsValid;
   // state of in-place updates
-  std::vector<Scalar> m_values;                                  ///< values of the current matrix
   internal::updatable_cholesky::CompressedPattern<StorageIndex> m_upper;  ///< C's strict upper part
   std::vector<char> m_removedPermuted, m_removedOriginal;       ///< removed flags, both numberings
   std::vector<StorageIndex> m_removedList;
@@ -363,7 +363,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
 
   internal::updatable_cholesky::NumericInput<Scalar> numericInput() const {
     internal::updatable_cholesky::NumericInput<Scalar> input;
-    input.values = m_values.data();
+    input.values = m_store.values.data();
     input.offset = m_shiftOffset;
     input.scale = m_shiftScale;
     input.removed = m_removedList.empty() ? nullptr : m_removedPermuted.data();
@@ -432,7 +432,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   // A compressed view of the input (copied only when the user's matrix is not compressed).
   MatrixType copy;
   const MatrixType* pa = compressedInput(a, copy);
-  m_pattern.assign(*pa);
+  constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
+  m_store.template assign<UpLo_>(*pa);
+  m_inputDiff.posMapIsIdentity = false;
 
   // 1. fill-reducing ordering on the full symmetric pattern, as Eigen's solvers do
   PermutationType orderingPinv;
@@ -461,7 +463,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   PermutedLowerEntries<StorageIndex> lower;
   CompressedPattern<StorageIndex> upper;
   std::vector<StorageIndex> parent, post;
-  permuteTriangle<UpLo_>(*pa, perm, lower, &upper);
+  permuteTriangle<rowMajor>(m_store, perm, lower, &upper);
   eliminationTree(upper, parent);
   postorder(parent, post);
   std::vector<StorageIndex> postInverse(n);
@@ -469,7 +471,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   for (Index i = 0; i < n; ++i) perm[i] = postInverse[perm[i]];
   std::vector<StorageIndex> postParent(n);
   for (Index k = 0; k < n; ++k) postParent[k] = parent[post[k]] == -1 ? StorageIndex(-1) : postInverse[parent[post[k]]];
-  permuteTriangle<UpLo_>(*pa, perm, lower, &m_upper);
+  permuteTriangle<rowMajor>(m_store, perm, lower, &m_upper);
   // 3. column counts, relaxed supernodes, row structures, factor storage and assembly maps
   std::vector<StorageIndex> colCount;
   columnCounts(lower.pattern, postParent, colCount);
@@ -490,7 +492,6 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   m_workspace.resize(m_factor.count());
   m_totalFlops = m_factor.flops();
   m_removedList.clear();
-  m_values.clear();
   m_info = Success;
   m_analysisIsOk = true;
 }
@@ -508,11 +509,11 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::factorize(const Matr
   }
   MatrixType copy;
   const MatrixType* pa = compressedInput(a, copy);
-  if (!m_pattern.matches(*pa)) {
+  if (!m_store.template matchesPattern<UpLo_>(*pa)) {
     m_info = InvalidInput;
     return;
   }
-  m_values.assign(pa->valuePtr(), pa->valuePtr() + pa->nonZeros());
+  m_store.template copyValues<UpLo_>(*pa);
   const Index bad = m_numeric.factorize(m_factor, numericInput(), threadCount());
   if (bad >= 0) {
     m_info = NumericalIssue;
@@ -637,14 +638,15 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   const MatrixType* pa = compressedInput(a, copy);
   std::vector<StorageIndex> cols;
   const char* why = nullptr;
-  if (!m_pattern.matches(*pa) || !internal::updatable_cholesky::checkIndices(columns, m_n, cols, why)) {
+  if (!m_store.template matchesPattern<UpLo_>(*pa) ||
+      !internal::updatable_cholesky::checkIndices(columns, m_n, cols, why)) {
     m_info = InvalidInput;
     return *this;
   }
   for (auto& c : cols) c = m_P.indices()[c];
-  std::vector<Scalar> previous(pa->valuePtr(), pa->valuePtr() + pa->nonZeros());
-  previous.swap(m_values);
-  applyUpdate(cols, false, [&]() { m_values.swap(previous); });
+  std::vector<Scalar> previous(m_store.values);
+  m_store.template copyValues<UpLo_>(*pa);
+  applyUpdate(cols, false, [&]() { m_store.values.swap(previous); });
   return *this;
 }
 
@@ -812,7 +814,6 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   const MatrixType* pa = compressedInput(a, copy);
   const Index n = m_n, total = pa->rows();
   constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
-  auto kept = [](Index row, Index col) { return UpLo_ == Lower ? row >= col : row <= col; };
   const StorageIndex* outer = pa->outerIndexPtr();
   const StorageIndex* inner = pa->innerIndexPtr();
   const Scalar* values = pa->valuePtr();
@@ -829,23 +830,27 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     return false;
   };
   InputDiff<Scalar, StorageIndex>& diff = m_inputDiff;
-  bool ok = diffInput<UpLo_, rowMajor>(m_pattern, m_values.data(), outer, inner, values, total, change.oldOfNew,
-                                       change.newOfOld, diff, foldAllowed);
+  if (!diffInput<UpLo_, rowMajor>(m_store, outer, inner, values, total, change.oldOfNew, change.newOfOld, diff,
+                                  foldAllowed)) {  // (the store is as it was)
+    m_info = InvalidInput;
+    return;
+  }
   const std::vector<char>& changed = diff.changed;
   // 2. A merge keeps the structure: it must hold every entry the current matrix lacks.
+  bool ok = true;
   for (Index k = 0; k < Index(diff.fresh.size()) && ok && change.merging; ++k) {
-    const Index x = diff.freshOuter[k], y = inner[diff.fresh[k]];
+    const Index x = diff.freshOuter[k], y = m_store.inner[diff.fresh[k]];
     if (x == y) continue;
     const Index px = perm[change.oldOfNew[x]], py = perm[change.oldOfNew[y]];
     ok = structureHolds(m_factor, (std::max)(px, py), (std::min)(px, py));
   }
   if (!ok) {
+    diff.revert(m_store);
     m_info = InvalidInput;
     return;
   }
-  if (total == n && diff.fresh.empty() && std::find(changed.begin(), changed.end(), char(1)) == changed.end() &&
-      m_pattern.matches(*pa)) {  // the same matrix, no dof added or merged (a cut with no interior vertex)
-    m_values.assign(values, values + pa->nonZeros());  // (the triangle not read may differ)
+  if (total == n && diff.inPlace && diff.rewrites.empty()) {  // the same matrix, no dof added or merged (a cut
+    diff.commit(m_store);                                        // with no interior vertex): nothing to do
     m_info = Success;
     recordUpdate(UpdateRoute::PartialRefactorization, 0, std::vector<Index>(), 0.0, start);
     return;
@@ -872,6 +877,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   std::sort(dirty.begin(), dirty.end());
   if (!ok) {
     for (Index s : dirty) mark[s] = 0;
+    diff.revert(m_store);
     m_info = InvalidInput;
     return;
   }
@@ -884,7 +890,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     for (Index s : dirty) m_numeric.applyCorrections(m_factor, s);
   std::vector<FreshEntry<StorageIndex> > fresh(diff.fresh.size());
   for (Index k = 0; k < Index(fresh.size()); ++k) {  // in the lower triangle of the new C
-    const Index p = diff.fresh[k], x = diff.freshOuter[k], y = inner[p];
+    const Index p = diff.fresh[k], x = diff.freshOuter[k], y = m_store.inner[p];
     const StorageIndex pi = change.newPerm[rowMajor ? x : y], pj = change.newPerm[rowMajor ? y : x];
     fresh[k] = pi >= pj ? FreshEntry<StorageIndex>{p, pi, pj} : FreshEntry<StorageIndex>{~p, pj, pi};
   }
@@ -892,21 +898,20 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   auto isChanged = [&](Index x) { return change.oldOfNew[x] < 0 || changed[change.oldOfNew[x]]; };
   for (Index x = 0; x < total; ++x) {
     if (!isChanged(x)) continue;
-    for (Index p = outer[x]; p < outer[x + 1]; ++p) {
-      const Index y = inner[p];
-      if (y == x || !kept(rowMajor ? x : y, rowMajor ? y : x) || !isChanged(y)) continue;
+    for (Index p = m_store.begin[x]; p < m_store.end[x]; ++p) {
+      const Index y = m_store.inner[p];
+      if (y == x || !isChanged(y)) continue;
       const StorageIndex px = change.newPerm[x], py = change.newPerm[y];
       pairs.emplace_back((std::max)(px, py), (std::min)(px, py));
     }
   }
   remapUpperPattern(m_upper, m_Pinv.indices().data(), changed, change.relabel, pairs, diff.spareUpper);
+  std::vector<Index> movedOwners;  // clean supernodes whose entries moved in the store
+  if (diff.inPlace) movedOwners = ownersOfRewrites(m_factor, m_store, diff, perm);
   relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
-  remapAssemblyMaps(m_factor, backup, change.relabel, mark, dirty, diff.posMap, fresh, diff.position);
-  // the previous pattern, values and upper pattern become the spares (and the revert)
-  std::swap(m_pattern, diff.sparePattern);
-  m_pattern.assign(*pa);
-  m_values.swap(diff.spareValues);
-  m_values.assign(values, values + pa->nonZeros());
+  remapAssemblyMaps(m_factor, backup, change.relabel, mark, dirty, diff.posMap, fresh, diff.position,
+                    diff.inPlace ? &movedOwners : nullptr);
+  // the previous upper pattern becomes the spare (and the revert)
   m_upper.ptr.swap(diff.spareUpper.ptr);
   m_upper.idx.swap(diff.spareUpper.idx);
   const PermutationType oldP = m_P;
@@ -1006,18 +1011,15 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   if (bad >= 0) {  // not positive definite: everything goes back as it was
     m_failedColumn = m_Pinv.indices()[bad];
     restoreFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
-    std::swap(m_pattern, diff.sparePattern);
-    m_values.swap(diff.spareValues);
+    diff.revert(m_store);
     m_upper.ptr.swap(diff.spareUpper.ptr);
     m_upper.idx.swap(diff.spareUpper.idx);
     m_P = oldP;
     m_Pinv = m_P.inverse();
     {  // (the rare failure path rebuilds the assembly maps from the previous matrix)
-      const Map<const MatrixType> previous(m_pattern.rows, m_pattern.cols, Index(m_pattern.inner.size()),
-                                           m_pattern.outer.data(), m_pattern.inner.data(), m_values.data());
       std::vector<StorageIndex> previousPerm(m_P.indices().data(), m_P.indices().data() + oldN);
       PermutedLowerEntries<StorageIndex> lower;
-      permuteTriangle<UpLo_>(previous, previousPerm, lower, static_cast<CompressedPattern<StorageIndex>*>(nullptr));
+      permuteTriangle<rowMajor>(m_store, previousPerm, lower, static_cast<CompressedPattern<StorageIndex>*>(nullptr));
       buildAssemblyMaps(lower, m_factor);
     }
     m_removedOriginal.swap(oldRemovedOriginal);
@@ -1043,6 +1045,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     }
     m_info = NumericalIssue;
   } else {
+    diff.commit(m_store);
     m_info = Success;
   }
   for (Index s : dirty) mark[s] = 0;
@@ -1066,7 +1069,7 @@ Matrix<typename MatrixType_::Scalar, Dynamic, Dynamic> UpdatableSupernodalLLT<Ma
       columns[r] = m_P.indices()[m_removedList[r]];
       x.row(columns[r]) = known.row(m_removedList[r]);
     }
-    internal::updatable_cholesky::subtractDirichletCoupling(m_factor, m_upper, m_values.data(),
+    internal::updatable_cholesky::subtractDirichletCoupling(m_factor, m_upper, m_store.values.data(),
                                                             m_removedPermuted.data(), columns, x.data(), x.rows(),
                                                             x.cols());
   }
