@@ -153,15 +153,27 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
     const Index nb = outer[x], ne = outer[x + 1];
     const Index ob = ox >= 0 ? store.begin[ox] : 0, oe = ox >= 0 ? store.end[ox] : 0;
     if (ox >= 0) {  // the same kept entries and values, under the renumbering?
-      Index q = ob;
-      bool same = true;
-      for (Index p = nb; p < ne && same; ++p) {
-        const Index y = inner[p];
-        if (!kept(x, y)) continue;
-        same = q < oe && oldOfNew[y] == store.inner[q] && values[p] == store.values[q];
-        ++q;
+      bool same;
+      if (d.inPlace) {  // no renumbering: the kept entries, a run of them, compared bitwise
+        Index p0 = nb;
+        while (p0 < ne && !kept(x, inner[p0])) ++p0;
+        const Index len = oe - ob;
+        same = (p0 == ne && len == 0) ||
+               (p0 + len <= ne && std::memcmp(inner + p0, store.inner.data() + ob, len * sizeof(StorageIndex)) == 0 &&
+                std::memcmp(values + p0, store.values.data() + ob, len * sizeof(Scalar)) == 0);
+        for (Index p = p0 + len; same && p < ne; ++p) same = !kept(x, inner[p]);
+      } else {
+        Index q = ob;
+        same = true;
+        for (Index p = nb; p < ne && same; ++p) {
+          const Index y = inner[p];
+          if (!kept(x, y)) continue;
+          same = q < oe && oldOfNew[y] == store.inner[q] && values[p] == store.values[q];
+          ++q;
+        }
+        same = same && q == oe;
       }
-      if (same && q == oe) {  // the common case: the outer vector stays (in place) or moves as a whole
+      if (same) {  // the common case: the outer vector stays (in place) or moves as a whole
         if (!d.inPlace) {
           out.begin[x] = Index(out.inner.size());
           for (Index p = nb, r = ob; p < ne; ++p) {

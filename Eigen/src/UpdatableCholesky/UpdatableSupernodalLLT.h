@@ -393,6 +393,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     internal::updatable_cholesky::DofRelabeling<StorageIndex> relabel;
     bool merging = false;
   };
+  DofChange m_dofChange;  ///< scratch of insertDofs()/mergeDofs(), kept so that its arrays are reused
   void replaceDofs(const MatrixType& matrix, DofChange& change);
   /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty and spent
     * \a flops (all of a refactorization's, reduced fronts counted on their kept rows). */
@@ -725,7 +726,9 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     m_info = InvalidInput;
     return *this;
   }
-  DofChange change;
+  DofChange& change = m_dofChange;
+  change.merging = false;
+  change.touched.clear();
   change.oldOfNew.resize(total);
   change.newOfOld.resize(n);
   change.preStart.resize(total + 1);
@@ -773,8 +776,9 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     m_info = InvalidInput;
     return *this;
   }
-  DofChange change;
+  DofChange& change = m_dofChange;
   change.merging = true;
+  change.touched.clear();
   change.oldOfNew.resize(total);
   change.newOfOld.assign(n, StorageIndex(-1));
   std::vector<char> dropped(n, 0);
