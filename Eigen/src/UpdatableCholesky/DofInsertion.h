@@ -37,6 +37,7 @@ struct DofRelabeling {
   std::vector<StorageIndex> copies;       ///< copies placed right after each old permuted column
   std::vector<StorageIndex> oldPosition;  ///< new permuted -> old permuted, or -1 for a copy
   Index newSize = 0;
+  Index firstMoved = 0;  ///< old permuted columns below this one keep their position
 
   /** Fills newPosition and oldPosition from copies and the dropped flags (both by old permuted column). */
   void build(const std::vector<char>& dropped) {
@@ -49,13 +50,16 @@ struct DofRelabeling {
       next += 1 + copies[k];
     }
     newSize = next;
+    firstMoved = 0;
+    while (firstMoved < n && newPosition[firstMoved] == firstMoved) ++firstMoved;
     oldPosition.assign(newSize, StorageIndex(-1));
     for (Index k = 0; k < n; ++k)
       if (newPosition[k] >= 0) oldPosition[newPosition[k]] = StorageIndex(k);
   }
 };
 
-/** \internal The parts of the factor an insertion or merge changes, kept for a revert. */
+/** \internal The parts of the factor an insertion or merge changes, kept for a revert (kept by
+  * the solver between calls, so that its per-supernode arrays are reused). */
 template <typename Scalar, typename StorageIndex>
 struct FactorStructureBackup {
   Index n = 0;
@@ -70,11 +74,12 @@ struct FactorStructureBackup {
   * (merged rows dropped, copies inserted after their origins) and lose their values and cached
   * update matrix (moved into \a backup, to be recomputed); clean ones are renumbered in place.
   * Recomputes first columns, column counts, colToSuper and the relative positions of the
-  * children of dirty supernodes. The assembly maps stay as they are (see remapAssemblyMaps()). */
+  * children of dirty supernodes. The assembly maps stay as they are (see remapAssemblyMaps()).
+  * \a position: scratch by new permuted row, all -1 between uses. */
 template <typename Scalar, typename StorageIndex>
 void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::vector<Scalar> >& cache,
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
-                   FactorStructureBackup<Scalar, StorageIndex>& backup) {
+                   FactorStructureBackup<Scalar, StorageIndex>& backup, std::vector<StorageIndex>& position) {
   const Index ns = f.count();
   backup.n = f.n;
   backup.colToSuper.swap(f.colToSuper);
@@ -88,8 +93,9 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
     auto& node = f.nodes[s];
     backup.firstCol[s] = node.firstCol;
     backup.ncols[s] = node.ncols;
-    if (!mark[s]) {
-      for (auto& r : node.rows) r = relabel.newPosition[r];
+    if (!mark[s]) {  // (rows are increasing: those before the first moved column stay)
+      auto r = std::lower_bound(node.rows.begin(), node.rows.end(), StorageIndex(relabel.firstMoved));
+      for (; r != node.rows.end(); ++r) *r = relabel.newPosition[*r];
     } else {
       backup.rows[s].swap(node.rows);
       backup.values[s].swap(node.values);
@@ -112,7 +118,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
   for (Index s = 0; s < ns; ++s)
     for (Index c = 0; c < f.nodes[s].ncols; ++c) f.colToSuper[f.nodes[s].firstCol + c] = StorageIndex(s);
   // relative positions of the children of dirty supernodes (the parents' rows changed)
-  std::vector<StorageIndex> position(f.n, StorageIndex(-1));
+  position.resize(f.n, StorageIndex(-1));
   for (Index p = 0; p < ns; ++p) {
     if (!mark[p]) continue;
     const auto& pn = f.nodes[p];
@@ -123,6 +129,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
       cn.parentPosition.resize(cn.below());
       for (Index k = 0; k < cn.below(); ++k) cn.parentPosition[k] = position[cn.rows[cn.ncols + k]];
     }
+    for (Index k = 0; k < pn.nrows(); ++k) position[pn.rows[k]] = StorageIndex(-1);
   }
 }
 

@@ -342,35 +342,29 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
 template <typename StorageIndex>
 void remapUpperPattern(const CompressedPattern<StorageIndex>& old, const StorageIndex* oldPinv,
                        const std::vector<char>& changed, const DofRelabeling<StorageIndex>& relabel,
-                       const std::vector<std::pair<StorageIndex, StorageIndex> >& pairs,
-                       CompressedPattern<StorageIndex>& out) {
-  const Index n = old.size(), total = relabel.newSize;
-  out.ptr.assign(total + 1, 0);
-  auto survives = [&](Index k, Index p) { return !changed[oldPinv[k]] || !changed[oldPinv[old.idx[p]]]; };
-  for (Index k = 0; k < n; ++k) {
-    const Index i = relabel.newPosition[k];
-    if (i < 0) continue;
-    Index count = 0;
-    if (!changed[oldPinv[k]])
-      count = old.ptr[k + 1] - old.ptr[k];
-    else
-      for (Index p = old.ptr[k]; p < old.ptr[k + 1]; ++p) count += survives(k, p);
-    out.ptr[i + 1] = count;
+                       std::vector<std::pair<StorageIndex, StorageIndex> >& pairs, CompressedPattern<StorageIndex>& out) {
+  const Index total = relabel.newSize;
+  std::sort(pairs.begin(), pairs.end());
+  // one pass over the new columns in order (the relabeling keeps the order of the old ones)
+  out.ptr.resize(total + 1);
+  out.idx.resize(old.idx.size() + pairs.size());
+  Index q = 0;
+  std::size_t e = 0;
+  out.ptr[0] = 0;
+  for (Index i = 0; i < total; ++i) {
+    const Index k = relabel.oldPosition[i];
+    if (k >= 0) {
+      if (!changed[oldPinv[k]]) {
+        for (Index p = old.ptr[k]; p < old.ptr[k + 1]; ++p) out.idx[q++] = relabel.newPosition[old.idx[p]];
+      } else {  // a changed dof keeps its unchanged neighbours
+        for (Index p = old.ptr[k]; p < old.ptr[k + 1]; ++p)
+          if (!changed[oldPinv[old.idx[p]]]) out.idx[q++] = relabel.newPosition[old.idx[p]];
+      }
+    }
+    for (; e < pairs.size() && Index(pairs[e].first) == i; ++e) out.idx[q++] = pairs[e].second;
+    out.ptr[i + 1] = q;
   }
-  for (const auto& e : pairs) ++out.ptr[e.first + 1];
-  for (Index i = 0; i < total; ++i) out.ptr[i + 1] += out.ptr[i];
-  out.idx.resize(out.ptr[total]);
-  std::vector<Index> fill(out.ptr.begin(), out.ptr.end() - 1);
-  for (Index k = 0; k < n; ++k) {
-    const Index i = relabel.newPosition[k];
-    if (i < 0) continue;
-    Index q = fill[i];
-    const bool all = !changed[oldPinv[k]];
-    for (Index p = old.ptr[k]; p < old.ptr[k + 1]; ++p)
-      if (all || survives(k, p)) out.idx[q++] = relabel.newPosition[old.idx[p]];
-    fill[i] = q;
-  }
-  for (const auto& e : pairs) out.idx[fill[e.first]++] = e.second;
+  out.idx.resize(q);
 }
 
 }  // namespace updatable_cholesky

@@ -394,6 +394,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     bool merging = false;
   };
   DofChange m_dofChange;  ///< scratch of insertDofs()/mergeDofs(), kept so that its arrays are reused
+  internal::updatable_cholesky::FactorStructureBackup<Scalar, StorageIndex> m_structureBackup;  ///< their revert
   void replaceDofs(const MatrixType& matrix, DofChange& change);
   /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty and spent
     * \a flops (all of a refactorization's, reduced fronts counted on their kept rows). */
@@ -889,7 +890,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   for (Index o = 0; o < n; ++o) changedCount += changed[o] && change.newOfOld[o] >= 0;
 
   // 4. The new structure and input; the previous ones kept aside for a revert.
-  FactorStructureBackup<Scalar, StorageIndex> backup;
+  FactorStructureBackup<Scalar, StorageIndex>& backup = m_structureBackup;
   if (m_numeric.hasCachedUpdates())  // the dirty caches are set aside as they are: no deferred parts
     for (Index s : dirty) m_numeric.applyCorrections(m_factor, s);
   std::vector<FreshEntry<StorageIndex> > fresh(diff.fresh.size());
@@ -912,7 +913,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   remapUpperPattern(m_upper, m_Pinv.indices().data(), changed, change.relabel, pairs, diff.spareUpper);
   std::vector<Index> movedOwners;  // clean supernodes whose entries moved in the store
   if (diff.inPlace) movedOwners = ownersOfRewrites(m_factor, m_store, diff, perm);
-  relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
+  relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup, diff.position);
   remapAssemblyMaps(m_factor, backup, change.relabel, mark, dirty, diff.posMap, fresh, diff.position,
                     diff.inPlace ? &movedOwners : nullptr);
   // the previous upper pattern becomes the spare (and the revert)
@@ -1052,7 +1053,11 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     diff.commit(m_store);
     m_info = Success;
   }
-  for (Index s : dirty) mark[s] = 0;
+  for (Index s : dirty) {
+    mark[s] = 0;
+    backup.values[s].resize(0, 0);  // the previous blocks are not kept past the call
+    std::vector<Scalar>().swap(backup.cache[s]);
+  }
   recordUpdate(route, changedCount, dirty, spentFlops, start);
 }
 
