@@ -338,7 +338,8 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
 
 /** \internal The strict upper pattern of the new C (column i lists its neighbours j < i) from the
   * current one: a column of an unchanged dof is renumbered as it is; a changed dof keeps its
-  * unchanged neighbours and takes its changed ones from \a pairs (i > j, new permuted). */
+  * unchanged neighbours and takes its changed ones from \a pairs (i > j, new permuted; sorted
+  * here, so that one pass over the new columns in order writes every column). */
 template <typename StorageIndex>
 void remapUpperPattern(const CompressedPattern<StorageIndex>& old, const StorageIndex* oldPinv,
                        const std::vector<char>& changed, const DofRelabeling<StorageIndex>& relabel,

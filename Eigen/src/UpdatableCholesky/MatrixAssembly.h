@@ -18,7 +18,7 @@ namespace internal {
 namespace updatable_cholesky {
 
 /** \internal The kept triangle of C = P A P^T stored by columns: column j holds rows i >= j and,
-  * for each, the position of its value in the input's value array (~position when the value
+  * for each, the position of its value in the solver's InputStore (~position when the value
   * must be conjugated because the entry crossed the diagonal). */
 template <typename StorageIndex>
 struct PermutedLowerEntries {
