@@ -38,16 +38,46 @@ struct DofRelabeling {
   std::vector<StorageIndex> oldPosition;  ///< new permuted -> old permuted, or -1 for a copy
   Index newSize = 0;
   Index firstMoved = 0;  ///< old permuted columns below this one keep their position
+  /** The shift newPosition[k] - k of a kept column as a step function: it becomes shiftAfter[j]
+    * for the columns after breaks[j] (an old column with copies, or a dropped one), increasing. */
+  std::vector<StorageIndex> breaks;
+  std::vector<StorageIndex> shiftAfter;
 
-  /** Fills newPosition and oldPosition from copies and the dropped flags (both by old permuted column). */
-  void build(const std::vector<char>& dropped) {
+  /** Renumbers the increasing kept old columns [first, last) in place (as newPosition would,
+    * reading the few breaks instead of n positions). */
+  template <typename Iterator>
+  void renumberIncreasing(Iterator first, Iterator last) const {
+    if (first == last) return;
+    Index j = std::lower_bound(breaks.begin(), breaks.end(), *first) - breaks.begin();
+    const Index nb = Index(breaks.size());
+    StorageIndex shift = j > 0 ? shiftAfter[j - 1] : StorageIndex(0);
+    for (; first != last; ++first) {
+      while (j < nb && breaks[j] < *first) shift = shiftAfter[j++];
+      *first += shift;
+    }
+  }
+
+  /** Fills newPosition and oldPosition from copies and the dropped flags (both by old permuted
+    * column; \a dropped null: none). */
+  void build(const char* dropped) {
     const Index n = Index(copies.size());
-    newPosition.assign(n, StorageIndex(-1));
+    newPosition.resize(n);
+    breaks.clear();
+    shiftAfter.clear();
     Index next = 0;
     for (Index k = 0; k < n; ++k) {
-      if (dropped[k]) continue;
+      if (dropped && dropped[k]) {
+        newPosition[k] = StorageIndex(-1);
+        breaks.push_back(StorageIndex(k));
+        shiftAfter.push_back(StorageIndex(next - k - 1));
+        continue;
+      }
       newPosition[k] = StorageIndex(next);
       next += 1 + copies[k];
+      if (copies[k] > 0) {
+        breaks.push_back(StorageIndex(k));
+        shiftAfter.push_back(StorageIndex(next - k - 1));
+      }
     }
     newSize = next;
     firstMoved = 0;
@@ -68,6 +98,18 @@ struct FactorStructureBackup {
   std::vector<std::vector<StorageIndex> > rows, parentPosition;  ///< dirty supernodes only
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > values;          ///< dirty supernodes only
   std::vector<std::vector<Scalar> > cache;                        ///< dirty supernodes only
+
+  /** Frees what the call kept of the \a dirty supernodes (and of their children), so that
+    * every per-supernode entry is empty between calls. */
+  template <typename Factor>
+  void release(const Factor& f, const std::vector<Index>& dirty) {
+    for (Index s : dirty) {
+      std::vector<StorageIndex>().swap(rows[s]);
+      values[s].resize(0, 0);
+      std::vector<Scalar>().swap(cache[s]);
+      for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) std::vector<StorageIndex>().swap(parentPosition[c]);
+    }
+  }
 };
 
 /** \internal Applies \a relabel to the factor: dirty supernodes (mark != 0) get new row lists
@@ -85,17 +127,17 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
   backup.colToSuper.swap(f.colToSuper);
   backup.firstCol.resize(ns);
   backup.ncols.resize(ns);
-  backup.rows.assign(ns, std::vector<StorageIndex>());
-  backup.parentPosition.assign(ns, std::vector<StorageIndex>());
-  backup.values.assign(ns, Matrix<Scalar, Dynamic, Dynamic>());
-  backup.cache.assign(ns, std::vector<Scalar>());
+  backup.rows.resize(ns);  // (all empty: the previous call released them)
+  backup.parentPosition.resize(ns);
+  backup.values.resize(ns);
+  backup.cache.resize(ns);
   for (Index s = 0; s < ns; ++s) {
     auto& node = f.nodes[s];
     backup.firstCol[s] = node.firstCol;
     backup.ncols[s] = node.ncols;
     if (!mark[s]) {  // (rows are increasing: those before the first moved column stay)
-      auto r = std::lower_bound(node.rows.begin(), node.rows.end(), StorageIndex(relabel.firstMoved));
-      for (; r != node.rows.end(); ++r) *r = relabel.newPosition[*r];
+      relabel.renumberIncreasing(std::lower_bound(node.rows.begin(), node.rows.end(), StorageIndex(relabel.firstMoved)),
+                                 node.rows.end());
     } else {
       backup.rows[s].swap(node.rows);
       backup.values[s].swap(node.values);
@@ -114,9 +156,13 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
     node.firstCol = node.ncols > 0 ? Index(node.rows[0]) : 0;
   }
   f.n = relabel.newSize;
-  f.colToSuper.assign(f.n, StorageIndex(-1));
-  for (Index s = 0; s < ns; ++s)
-    for (Index c = 0; c < f.nodes[s].ncols; ++c) f.colToSuper[f.nodes[s].firstCol + c] = StorageIndex(s);
+  f.colToSuper.resize(f.n);  // one pass in order: a copy belongs to the supernode of its origin
+  StorageIndex owner = -1;
+  for (Index j = 0; j < f.n; ++j) {
+    const StorageIndex k = relabel.oldPosition[j];
+    if (k >= 0) owner = backup.colToSuper[k];
+    f.colToSuper[j] = owner;
+  }
   // relative positions of the children of dirty supernodes (the parents' rows changed)
   position.resize(f.n, StorageIndex(-1));
   for (Index p = 0; p < ns; ++p) {
@@ -166,16 +212,6 @@ template <typename Scalar, typename StorageIndex>
 bool structureHolds(const SupernodalFactor<Scalar, StorageIndex>& f, Index row, Index col) {
   const auto& rows = f.nodes[f.colToSuper[col]].rows;
   return std::binary_search(rows.begin(), rows.end(), StorageIndex(row));
-}
-
-/** \internal True when C = P A P^T holds an entry at permuted (a, b), a != b, by its strict upper
-  * pattern \a upper (column max(a,b) lists the smaller neighbours). */
-template <typename StorageIndex>
-bool patternHolds(const CompressedPattern<StorageIndex>& upper, Index a, Index b) {
-  if (a < b) std::swap(a, b);
-  for (Index p = upper.ptr[a]; p < upper.ptr[a + 1]; ++p)
-    if (upper.idx[p] == b) return true;
-  return false;
 }
 
 }  // namespace updatable_cholesky

@@ -2,9 +2,9 @@
 // without a pass that rebuilds it from the whole new matrix (paper §4.2: only the dirty part
 // of the factor is touched; here the same holds, as far as it can, for what feeds it).
 //
-// The solver keeps, besides the factor, the kept triangle of the matrix (InputStore.h), the
-// strict upper pattern of C = P A P^T (for dirty-path marking) and, per supernode, an assembly
-// map from store positions into the supernode's block. After a cut or merge:
+// The solver keeps, besides the factor, the kept triangle of the matrix and its transposed
+// pattern (InputStore.h) and, per supernode, an assembly map from store positions into the
+// supernode's block. After a cut or merge:
 //   - diffInput() compares the new matrix with the store outer vector by outer vector; one whose
 //     kept entries and values are the same (the vast majority) costs a sequential compare and,
 //     for an insertion or the merge of trailing dofs, nothing else: it stays where it is in the
@@ -15,8 +15,9 @@
 //   - remapAssemblyMaps(): a clean supernode keeps its map, or maps its sources through the
 //     position map when it owns an entry that moved; a dirty supernode's map is rebuilt from its
 //     old map (surviving entries, new row positions) plus the fresh entries of its columns.
-//   - remapUpperPattern(): an unchanged dof keeps its neighbours (renumbered); a changed one
-//     keeps its unchanged neighbours and gets its changed neighbours from the new matrix.
+//   - the transposed pattern (in the user's numbering, which an insertion keeps): an unchanged
+//     dof keeps its list; a changed one keeps its unchanged neighbours and gets its changed ones
+//     from the new matrix (UpdatableSupernodalLLT::replaceDofs()).
 // The scratch arrays live in the solver between calls.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_DOF_INSERTION_INPUT_H
@@ -25,6 +26,7 @@
 #include <algorithm>
 #include <cstring>
 #include <vector>
+#include <utility>
 
 namespace Eigen {
 namespace internal {
@@ -48,6 +50,7 @@ struct InputDiff {
     Index outer, begin, end;
   };
   std::vector<char> changed;    ///< by current dof: its row/column differs in the new matrix (or it goes)
+  std::vector<StorageIndex> changedList;  ///< the dofs flagged in changed, once each
   /** previous store position -> new one (-1: the entry is gone); between calls the identity on
     * every live position, so that an insertion writes only the positions it moves */
   std::vector<StorageIndex> posMap;
@@ -60,7 +63,9 @@ struct InputDiff {
   std::vector<Index> stamp;     ///< scratch by current dof, all -1 between uses
   std::vector<StorageIndex> position;    ///< scratch by new permuted row, all -1 between uses
   InputStore<Scalar, StorageIndex> spare;  ///< rebuilt: the previous store (the revert)
-  CompressedPattern<StorageIndex> spareUpper;   ///< buffers for the next strict upper pattern of C
+  TransposedPattern<StorageIndex> spareTransposed;  ///< rebuilt: the previous transposed pattern (the revert)
+  std::vector<StorageIndex> targets, list;       ///< scratch: the dofs whose transposed lists are rewritten
+  std::vector<std::pair<StorageIndex, StorageIndex> > pairs;  ///< scratch: entries between changed dofs
 
   /** Makes posMap the identity on the positions of \a store. */
   void resetPositions(const InputStore<Scalar, StorageIndex>& store) {
@@ -107,9 +112,10 @@ struct InputDiff {
   /** Bytes held by the scratch arrays and spare buffers. */
   Index bytes() const {
     return Index(changed.capacity() + (stamp.capacity() + fresh.capacity()) * sizeof(Index) +
-                 (posMap.capacity() + freshOuter.capacity() + position.capacity() + spareUpper.idx.capacity()) *
+                 (posMap.capacity() + freshOuter.capacity() + position.capacity() + changedList.capacity() +
+                  targets.capacity() + list.capacity() + 2 * pairs.capacity()) *
                      sizeof(StorageIndex) +
-                 spareUpper.ptr.capacity() * sizeof(Index) + spare.bytes() + rewrites.capacity() * sizeof(Rewrite));
+                 spare.bytes() + spareTransposed.bytes() + rewrites.capacity() * sizeof(Rewrite));
   }
 };
 
@@ -125,6 +131,12 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
                const std::vector<StorageIndex>& newOfOld, InputDiff<Scalar, StorageIndex>& d, Allowed&& allowed) {
   const Index n = store.outerSize();
   d.changed.assign(n, 0);
+  d.changedList.clear();
+  auto setChanged = [&d](Index o) {
+    if (d.changed[o]) return;
+    d.changed[o] = 1;
+    d.changedList.push_back(StorageIndex(o));
+  };
   d.stamp.resize(n, -1);
   d.fresh.clear();
   d.freshOuter.clear();
@@ -201,7 +213,10 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
       out.values.push_back(values[p]);
       const Index oy = oldOfNew[y];
       if (ox >= 0 && oy >= 0 && d.stamp[oy] >= 0) {  // an entry the current matrix has
-        if (!(values[p] == store.values[d.stamp[oy]])) d.changed[ox] = d.changed[oy] = 1;
+        if (!(values[p] == store.values[d.stamp[oy]])) {
+          setChanged(ox);
+          setChanged(oy);
+        }
         d.posMap[d.stamp[oy]] = StorageIndex(np);
         d.stamp[oy] = -2;
         continue;
@@ -212,8 +227,8 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
         d.revert(store);
         return false;
       }
-      if (ox >= 0) d.changed[ox] = 1;
-      if (oy >= 0) d.changed[oy] = 1;
+      if (ox >= 0) setChanged(ox);
+      if (oy >= 0) setChanged(oy);
       d.fresh.push_back(np);
       d.freshOuter.push_back(StorageIndex(x));
     }
@@ -221,15 +236,18 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
     out.end[x] = Index(out.inner.size());
     for (Index q = ob; q < oe; ++q) {
       const Index y = store.inner[q];
-      if (d.stamp[y] >= 0) d.changed[ox] = d.changed[y] = 1;  // an entry that is gone
+      if (d.stamp[y] >= 0) {  // an entry that is gone
+        setChanged(ox);
+        setChanged(y);
+      }
       d.stamp[y] = -1;
     }
   }
   for (Index o = 0; o < n; ++o) {  // merged dofs: every entry of theirs is gone
     if (newOfOld[o] >= 0) continue;
-    d.changed[o] = 1;
+    setChanged(o);
     for (Index q = store.begin[o]; q < store.end[o]; ++q) {
-      d.changed[store.inner[q]] = 1;
+      setChanged(store.inner[q]);
       d.posMap[q] = -1;
     }
     if (d.inPlace) d.rewrites.push_back(typename InputDiff<Scalar, StorageIndex>::Rewrite{o, store.begin[o], store.end[o]});
@@ -334,38 +352,6 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
     }
     for (Index k = 0; k < nr; ++k) position[node.rows[k]] = StorageIndex(-1);
   }
-}
-
-/** \internal The strict upper pattern of the new C (column i lists its neighbours j < i) from the
-  * current one: a column of an unchanged dof is renumbered as it is; a changed dof keeps its
-  * unchanged neighbours and takes its changed ones from \a pairs (i > j, new permuted; sorted
-  * here, so that one pass over the new columns in order writes every column). */
-template <typename StorageIndex>
-void remapUpperPattern(const CompressedPattern<StorageIndex>& old, const StorageIndex* oldPinv,
-                       const std::vector<char>& changed, const DofRelabeling<StorageIndex>& relabel,
-                       std::vector<std::pair<StorageIndex, StorageIndex> >& pairs, CompressedPattern<StorageIndex>& out) {
-  const Index total = relabel.newSize;
-  std::sort(pairs.begin(), pairs.end());
-  // one pass over the new columns in order (the relabeling keeps the order of the old ones)
-  out.ptr.resize(total + 1);
-  out.idx.resize(old.idx.size() + pairs.size());
-  Index q = 0;
-  std::size_t e = 0;
-  out.ptr[0] = 0;
-  for (Index i = 0; i < total; ++i) {
-    const Index k = relabel.oldPosition[i];
-    if (k >= 0) {
-      if (!changed[oldPinv[k]]) {
-        for (Index p = old.ptr[k]; p < old.ptr[k + 1]; ++p) out.idx[q++] = relabel.newPosition[old.idx[p]];
-      } else {  // a changed dof keeps its unchanged neighbours
-        for (Index p = old.ptr[k]; p < old.ptr[k + 1]; ++p)
-          if (!changed[oldPinv[old.idx[p]]]) out.idx[q++] = relabel.newPosition[old.idx[p]];
-      }
-    }
-    for (; e < pairs.size() && Index(pairs[e].first) == i; ++e) out.idx[q++] = pairs[e].second;
-    out.ptr[i + 1] = q;
-  }
-  out.idx.resize(q);
 }
 
 }  // namespace updatable_cholesky

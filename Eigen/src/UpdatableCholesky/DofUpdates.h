@@ -101,19 +101,43 @@ void markPathToRoot(const SupernodalFactor<Scalar, StorageIndex>& f, Index s, st
   }
 }
 
+/** \internal Calls visit(y, a) for every entry A(y, d) = a, y != d, of column \a d of the current
+  * matrix (user numbering), read from the store: its own outer vector d, and the outer vectors
+  * that \a transposed lists for d. The cost is that of column d and of those outer vectors. */
+template <bool RowMajor, typename Scalar, typename StorageIndex, typename Visit>
+void forEachColumnEntry(const InputStore<Scalar, StorageIndex>& store, const TransposedPattern<StorageIndex>& transposed,
+                        Index d, Visit&& visit) {
+  for (Index p = store.begin[d]; p < store.end[d]; ++p) {  // outer d, inner y: A(y, d), or A(d, y) row-major
+    const Index y = store.inner[p];
+    if (y != d) visit(y, RowMajor ? Scalar(numext::conj(store.values[p])) : store.values[p]);
+  }
+  for (Index q = transposed.begin[d]; q < transposed.end[d]; ++q) {  // outer x, inner d: A(d, x), or A(x, d) row-major
+    const Index x = transposed.pool[q];
+    for (Index p = store.begin[x]; p < store.end[x]; ++p)
+      if (Index(store.inner[p]) == d) {
+        visit(x, RowMajor ? store.values[p] : Scalar(numext::conj(store.values[p])));
+        break;
+      }
+  }
+}
+
 /** \internal The dirty supernodes, increasing, for the changed permuted columns \a columns:
-  * their supernodes, those of their neighbours earlier in the order (\a upper holds, for every
-  * permuted column k, the rows i < k of C), and all ancestors. */
+  * their supernodes, those of their neighbours (read from the store and its transposed pattern;
+  * \a perm and \a pinv: the permutation and its inverse), and all ancestors. */
 template <typename Scalar, typename StorageIndex>
 std::vector<Index> dirtySupernodes(const SupernodalFactor<Scalar, StorageIndex>& f,
-                                   const CompressedPattern<StorageIndex>& upper,
-                                   const std::vector<StorageIndex>& columns, UpdateWorkspace<Scalar>& ws) {
+                                   const InputStore<Scalar, StorageIndex>& store,
+                                   const TransposedPattern<StorageIndex>& transposed, const StorageIndex* perm,
+                                   const StorageIndex* pinv, const std::vector<StorageIndex>& columns,
+                                   UpdateWorkspace<Scalar>& ws) {
   std::vector<char>& mark = ws.mark;
   std::vector<Index> dirty;
   auto markPath = [&](Index s) { markPathToRoot(f, s, mark, dirty); };
   for (StorageIndex k : columns) {
     markPath(f.colToSuper[k]);
-    for (Index p = upper.ptr[k]; p < upper.ptr[k + 1]; ++p) markPath(f.colToSuper[upper.idx[p]]);
+    const Index d = pinv[k];
+    for (Index p = store.begin[d]; p < store.end[d]; ++p) markPath(f.colToSuper[perm[store.inner[p]]]);
+    for (Index q = transposed.begin[d]; q < transposed.end[d]; ++q) markPath(f.colToSuper[perm[transposed.pool[q]]]);
   }
   std::sort(dirty.begin(), dirty.end());
   for (Index s : dirty) mark[s] = 0;
@@ -142,60 +166,20 @@ double refactorizationFlops(const SupernodalFactor<Scalar, StorageIndex>& f, dou
   return flops;
 }
 
-/** \internal Calls visit(i, c) for every entry C(i,k) = c, i != k, of column \a k of the
-  * permuted matrix C = P A P^T, reading the values \a values of the input through the assembly
-  * maps of the factor: the rows i > k from the map of k's own column, the rows i < k (listed by
-  * \a upper) from the maps of their columns, conjugated. The cost is that of column k and of
-  * a binary search per entry, independent of n. */
-template <typename Scalar, typename StorageIndex, typename Visit>
-void forEachPermutedColumnEntry(const SupernodalFactor<Scalar, StorageIndex>& f,
-                                const CompressedPattern<StorageIndex>& upper, const Scalar* values, Index k,
-                                Visit&& visit) {
-  // The entries of a supernode's map come column by column: the range of local column c.
-  auto columnRange = [](const Supernode<Scalar, StorageIndex>& node, Index c, Index& begin, Index& end) {
-    const Index nr = node.nrows();
-    const auto& t = node.assemblyTarget;
-    auto columnOf = [nr](Index target) { return (target >= 0 ? target : ~target) / nr; };
-    begin = std::partition_point(t.begin(), t.end(), [&](Index x) { return columnOf(x) < c; }) - t.begin();
-    end = std::partition_point(t.begin() + begin, t.end(), [&](Index x) { return columnOf(x) <= c; }) - t.begin();
-  };
-  auto valueAt = [&](const Supernode<Scalar, StorageIndex>& node, Index q) {
-    const Scalar v = values[node.assemblySource[q]];
-    return node.assemblyTarget[q] >= 0 ? v : Scalar(numext::conj(v));
-  };
-  const auto& own = f.nodes[f.colToSuper[k]];
-  Index begin, end;
-  columnRange(own, k - own.firstCol, begin, end);
-  for (Index q = begin; q < end; ++q) {  // C(i,k), i >= k, stored in column k
-    const Index target = own.assemblyTarget[q] >= 0 ? own.assemblyTarget[q] : ~own.assemblyTarget[q];
-    const Index i = own.rows[target % own.nrows()];
-    if (i != k) visit(i, valueAt(own, q));
-  }
-  for (Index p = upper.ptr[k]; p < upper.ptr[k + 1]; ++p) {  // C(i,k) = conj(C(k,i)), i < k
-    const Index i = upper.idx[p];
-    const auto& node = f.nodes[f.colToSuper[i]];
-    const Index nr = node.nrows(), c = i - node.firstCol;
-    const Index position = std::lower_bound(node.rows.begin(), node.rows.end(), StorageIndex(k)) - node.rows.begin();
-    const Index wanted = c * nr + position;
-    columnRange(node, c, begin, end);
-    for (Index q = begin; q < end; ++q) {
-      const Index target = node.assemblyTarget[q] >= 0 ? node.assemblyTarget[q] : ~node.assemblyTarget[q];
-      if (target == wanted) visit(i, Scalar(numext::conj(valueAt(node, q))));
-    }
-  }
-}
-
 /** \internal The Dirichlet coupling in the permuted numbering: X(i,:) -= C(i,k) X(k,:) for every
   * removed permuted column k in \a removedColumns and every kept row i (\a removed flags the
-  * removed permuted indices). X (leading dimension ldx, \a rhs columns) holds the known values in
-  * the removed rows. Only the columns of the removed dofs are read: the cost is that of their
-  * entries, not of the matrix. */
-template <typename Scalar, typename StorageIndex>
-void subtractDirichletCoupling(const SupernodalFactor<Scalar, StorageIndex>& f,
-                               const CompressedPattern<StorageIndex>& upper, const Scalar* values, const char* removed,
+  * removed permuted indices), with C = P A P^T read from the store (\a perm, \a pinv: P and its
+  * inverse). X (leading dimension ldx, \a rhs columns) holds the known values in the removed
+  * rows. Only the columns of the removed dofs are read: the cost is that of their entries, not
+  * of the matrix. */
+template <bool RowMajor, typename Scalar, typename StorageIndex>
+void subtractDirichletCoupling(const InputStore<Scalar, StorageIndex>& store,
+                               const TransposedPattern<StorageIndex>& transposed, const StorageIndex* perm,
+                               const StorageIndex* pinv, const char* removed,
                                const std::vector<StorageIndex>& removedColumns, Scalar* X, Index ldx, Index rhs) {
   for (StorageIndex k : removedColumns)
-    forEachPermutedColumnEntry(f, upper, values, Index(k), [&](Index i, const Scalar& c) {
+    forEachColumnEntry<RowMajor>(store, transposed, pinv[k], [&](Index y, const Scalar& c) {  // C(perm[y], k) = c
+      const Index i = perm[y];
       if (removed[i]) return;
       for (Index r = 0; r < rhs; ++r) X[i + r * ldx] -= c * X[k + r * ldx];
     });

@@ -8,6 +8,11 @@
 // entry keeps its position, so the maps of the supernodes that do not own a rewritten entry stay
 // valid as they are. The positions a rewrite leaves behind are garbage; the pool is compacted
 // (and every map renewed) when garbage outgrows the live entries.
+//
+// TransposedPattern is the store's pattern the other way round (for each dof, the outer vectors
+// that hold it), kept in the same way; together they give every neighbour of a dof, for the
+// dirty-path marking of updateColumns()/removeDofs(), the Dirichlet coupling and the pattern
+// checks of insertDofs()/mergeDofs().
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_INPUT_STORE_H
 #define EIGEN_UPDATABLE_CHOLESKY_INPUT_STORE_H
@@ -105,6 +110,104 @@ struct InputStore {
   Index bytes() const {
     return Index((begin.capacity() + end.capacity()) * sizeof(Index) + inner.capacity() * sizeof(StorageIndex) +
                  values.capacity() * sizeof(Scalar));
+  }
+};
+
+/** \internal The other half of the store's pattern: for each dof y, the dofs x != y whose outer
+  * vector in the store holds an entry at inner index y. With the store's own outer vector of y,
+  * it lists every neighbour of y, in the user's numbering, which an insertion does not change: a
+  * cut rewrites only the lists of the changed dofs and adds those of the copies (appended to the
+  * pool, the old range becoming garbage, as in the store), instead of renumbering a pattern of
+  * the whole matrix. */
+template <typename StorageIndex>
+struct TransposedPattern {
+  std::vector<Index> begin, end;   ///< per dof, its range in the pool
+  std::vector<StorageIndex> pool;  ///< the listed dofs
+  Index live = 0;                  ///< entries in use (the rest of the pool is garbage)
+
+  /** A list replaced (or dropped) since beginRewrites(), and its previous range. */
+  struct Rewrite {
+    Index dof, begin, end;
+  };
+  std::vector<Rewrite> rewrites;
+  Index oldPool = 0, oldSize = 0, oldLive = 0;  ///< the extent before beginRewrites()
+
+  Index size() const { return Index(begin.size()); }
+  /** True when the pool holds more garbage than live entries. */
+  bool wasteful() const { return Index(pool.size()) > 2 * live + 16; }
+  /** True when \a x is listed for \a y. */
+  bool lists(Index y, Index x) const {
+    for (Index q = begin[y]; q < end[y]; ++q)
+      if (Index(pool[q]) == x) return true;
+    return false;
+  }
+  /** True when the store holds an entry at (u, v), u != v, in either orientation. */
+  bool holds(Index u, Index v) const { return lists(u, v) || lists(v, u); }
+
+  /** Builds the lists of \a store from scratch, compactly. */
+  template <typename Scalar>
+  void assign(const InputStore<Scalar, StorageIndex>& store) {
+    const Index n = store.outerSize();
+    begin.assign(n, 0);
+    end.resize(n);
+    for (Index x = 0; x < n; ++x)
+      for (Index p = store.begin[x]; p < store.end[x]; ++p)
+        if (Index(store.inner[p]) != x) ++begin[store.inner[p]];
+    Index sum = 0;
+    for (Index y = 0; y < n; ++y) {
+      const Index count = begin[y];
+      begin[y] = end[y] = sum;
+      sum += count;
+    }
+    pool.resize(sum);
+    for (Index x = 0; x < n; ++x)
+      for (Index p = store.begin[x]; p < store.end[x]; ++p) {
+        const Index y = store.inner[p];
+        if (y != x) pool[end[y]++] = StorageIndex(x);
+      }
+    live = sum;
+    rewrites.clear();
+  }
+
+  /** Starts replacing lists in place (rewrite()): the dofs become \a n (the lists of new ones are
+    * empty, those of dofs beyond \a n are dropped); revert() undoes everything since. */
+  void beginRewrites(Index n) {
+    oldPool = Index(pool.size());
+    oldSize = size();
+    oldLive = live;
+    rewrites.clear();
+    for (Index y = n; y < oldSize; ++y) {
+      rewrites.push_back(Rewrite{y, begin[y], end[y]});
+      live -= end[y] - begin[y];
+    }
+    begin.resize(n, 0);
+    end.resize(n, 0);
+  }
+  /** Replaces the list of \a y by the \a count dofs at \a list (not in the pool). */
+  void rewrite(Index y, const StorageIndex* list, Index count) {
+    rewrites.push_back(Rewrite{y, begin[y], end[y]});
+    live += count - (end[y] - begin[y]);
+    begin[y] = Index(pool.size());
+    pool.insert(pool.end(), list, list + count);
+    end[y] = Index(pool.size());
+  }
+  /** Puts back the lists as they were at beginRewrites(). */
+  void revert() {
+    begin.resize(oldSize, 0);
+    end.resize(oldSize, 0);
+    for (auto r = rewrites.rbegin(); r != rewrites.rend(); ++r) {
+      begin[r->dof] = r->begin;
+      end[r->dof] = r->end;
+    }
+    pool.resize(oldPool);
+    live = oldLive;
+    rewrites.clear();
+  }
+
+  /** Bytes held. */
+  Index bytes() const {
+    return Index((begin.capacity() + end.capacity()) * sizeof(Index) + pool.capacity() * sizeof(StorageIndex) +
+                 rewrites.capacity() * sizeof(Rewrite));
   }
 };
 

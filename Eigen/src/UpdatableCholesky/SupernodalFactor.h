@@ -31,8 +31,10 @@ struct Supernode {
   Index nrows() const { return Index(rows.size()); }
   Index below() const { return Index(rows.size()) - ncols; }
   /** Flops of this supernode's dense work: potrf, trsm and the update-matrix herk. */
-  double flops() const {
-    const double c = double(ncols), m = double(below());
+  double flops() const { return flopsOf(ncols, below()); }
+  /** Flops of the dense work of a supernode of \a columns columns and \a below rows below them. */
+  static double flopsOf(Index columns, Index below) {
+    const double c = double(columns), m = double(below);
     return c * c * c / 3.0 + m * c * c + m * m * c;
   }
 };

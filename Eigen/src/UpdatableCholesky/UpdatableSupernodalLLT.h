@@ -258,7 +258,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     * its workspace (including the scratch and spare buffers that insertDofs()/mergeDofs() keep
     * between calls). */
   Index memoryBytes() const {
-    Index b = m_numeric.workspaceBytes() + m_inputDiff.bytes() + m_store.bytes();
+    Index b = m_numeric.workspaceBytes() + m_inputDiff.bytes() + m_store.bytes() + m_transposed.bytes() +
+              m_insertChange.bytes() + m_mergeChange.bytes();
     for (const auto& node : m_factor.nodes)
       b += Index(node.values.size() * sizeof(Scalar) + node.rows.capacity() * sizeof(StorageIndex) +
                  node.parentPosition.capacity() * sizeof(StorageIndex) +
@@ -352,7 +353,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   mutable CholMatrixType m_sparseL;
   mutable bool m_sparseLIsValid;
   // state of in-place updates
-  internal::updatable_cholesky::CompressedPattern<StorageIndex> m_upper;  ///< C's strict upper part
+  internal::updatable_cholesky::TransposedPattern<StorageIndex> m_transposed;  ///< the store's pattern, by inner index
   std::vector<char> m_removedPermuted, m_removedOriginal;       ///< removed flags, both numberings
   std::vector<StorageIndex> m_removedList;
   UpdateRoute m_route = UpdateRoute::Automatic;
@@ -388,12 +389,26 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     std::vector<StorageIndex> oldOfNew;   ///< new dof -> current dof, or -1 for a copy
     std::vector<StorageIndex> newOfOld;   ///< current dof -> new dof, or -1 when merged away
     std::vector<StorageIndex> preStart, preList;  ///< per new dof, the current dofs it stands for
-    std::vector<StorageIndex> newPerm;    ///< new dof -> new permuted position
+    /** the four arrays above hold i at every i below this (an insertion rewrites only the rest) */
+    Index identityLength = 0;
+    typename PermutationType::IndicesType newPerm;  ///< new dof -> new permuted position (then the previous one)
+    typename PermutationType::IndicesType newPinv;  ///< its inverse (then the previous one)
     std::vector<StorageIndex> touched;    ///< current dofs dirty in any case (origins, merged)
+    std::vector<StorageIndex> placed;     ///< insertion: copies placed per old permuted column, 0 between calls
+    std::vector<StorageIndex> previousRemoved;  ///< the removed dofs before the call (for a revert)
     internal::updatable_cholesky::DofRelabeling<StorageIndex> relabel;
     bool merging = false;
+    /** Bytes held. */
+    Index bytes() const {
+      return Index((oldOfNew.capacity() + newOfOld.capacity() + preStart.capacity() + preList.capacity() +
+                    touched.capacity() + placed.capacity() + previousRemoved.capacity() + relabel.newPosition.capacity() +
+                    relabel.copies.capacity() + relabel.oldPosition.capacity() + newPerm.size() + newPinv.size()) *
+                   sizeof(StorageIndex));
+    }
   };
-  DofChange m_dofChange;  ///< scratch of insertDofs()/mergeDofs(), kept so that its arrays are reused
+  /** Scratch of insertDofs() and of mergeDofs(), kept so that their arrays are reused: an
+    * insertion's renumbering is the identity on the old dofs, which its arrays keep between calls. */
+  DofChange m_insertChange, m_mergeChange;
   internal::updatable_cholesky::FactorStructureBackup<Scalar, StorageIndex> m_structureBackup;  ///< their revert
   void replaceDofs(const MatrixType& matrix, DofChange& change);
   /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty and spent
@@ -473,7 +488,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   for (Index i = 0; i < n; ++i) perm[i] = postInverse[perm[i]];
   std::vector<StorageIndex> postParent(n);
   for (Index k = 0; k < n; ++k) postParent[k] = parent[post[k]] == -1 ? StorageIndex(-1) : postInverse[parent[post[k]]];
-  permuteTriangle<rowMajor>(m_store, perm, lower, &m_upper);
+  permuteTriangle<rowMajor>(m_store, perm, lower, static_cast<CompressedPattern<StorageIndex>*>(nullptr));
+  m_transposed.assign(m_store);
   // 3. column counts, relaxed supernodes, row structures, factor storage and assembly maps
   std::vector<StorageIndex> colCount;
   columnCounts(lower.pattern, postParent, colCount);
@@ -570,7 +586,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   using namespace internal::updatable_cholesky;
   const auto start = std::chrono::steady_clock::now();
   m_sparseLIsValid = false;
-  const std::vector<Index> dirty = dirtySupernodes(m_factor, m_upper, permutedColumns, m_workspace);
+  const std::vector<Index> dirty = dirtySupernodes(m_factor, m_store, m_transposed, m_P.indices().data(),
+                                                   m_Pinv.indices().data(), permutedColumns, m_workspace);
   const char* removedFlags = m_removedList.empty() ? nullptr : m_removedPermuted.data();
   const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
   const double dirtyFlops = supernodeFlops(m_factor, dirty, removedFlags);
@@ -727,36 +744,43 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     m_info = InvalidInput;
     return *this;
   }
-  DofChange& change = m_dofChange;
+  DofChange& change = m_insertChange;
   change.merging = false;
   change.touched.clear();
+  // the old dofs keep their numbers: the arrays are the identity below n, which they keep
+  // between insertions, so only the copies' entries (and those of the previous call's) are written
   change.oldOfNew.resize(total);
   change.newOfOld.resize(n);
   change.preStart.resize(total + 1);
   change.preList.resize(total);
+  for (Index i = (std::min)(change.identityLength, n); i < n; ++i)
+    change.oldOfNew[i] = change.newOfOld[i] = change.preStart[i] = change.preList[i] = StorageIndex(i);
+  change.identityLength = n;
+  const StorageIndex* perm = m_P.indices().data();
   auto& relabel = change.relabel;
-  relabel.copies.assign(n, 0);
-  for (Index i = 0; i < total; ++i) {
+  relabel.copies.resize(n, 0);  // (zero between calls)
+  for (Index i = n; i < total; ++i) {
     const StorageIndex o = StorageIndex(origin[i]);
-    change.oldOfNew[i] = i < n ? o : StorageIndex(-1);
-    if (i < n) change.newOfOld[i] = o;
+    change.oldOfNew[i] = StorageIndex(-1);
     change.preStart[i] = StorageIndex(i);
     change.preList[i] = o;  // a copy stands for its origin
-    if (i >= n) {
-      ++relabel.copies[m_P.indices()[o]];
-      change.touched.push_back(o);
-    }
+    ++relabel.copies[perm[o]];
+    change.touched.push_back(o);
   }
   change.preStart[total] = StorageIndex(total);
-  relabel.build(std::vector<char>(n, 0));
+  relabel.build(nullptr);
   // each copy right after its origin, copies of one origin in increasing order
   change.newPerm.resize(total);
-  std::vector<StorageIndex> placed(n, 0);
-  for (Index i = 0; i < total; ++i) {
-    const StorageIndex po = m_P.indices()[change.preList[i]];
-    change.newPerm[i] = i < n ? relabel.newPosition[po] : StorageIndex(relabel.newPosition[po] + 1 + placed[po]++);
+  change.placed.resize(n, 0);  // (zero between calls)
+  for (Index i = 0; i < n; ++i) change.newPerm[i] = relabel.newPosition[perm[i]];
+  for (Index i = n; i < total; ++i) {
+    const StorageIndex po = perm[change.preList[i]];
+    change.newPerm[i] = StorageIndex(relabel.newPosition[po] + 1 + change.placed[po]++);
   }
+  std::vector<StorageIndex> originPositions(change.touched.size());
+  for (std::size_t k = 0; k < originPositions.size(); ++k) originPositions[k] = perm[change.touched[k]];
   replaceDofs(a, change);
+  for (StorageIndex po : originPositions) relabel.copies[po] = change.placed[po] = 0;  // zero again
   return *this;
 }
 
@@ -777,7 +801,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     m_info = InvalidInput;
     return *this;
   }
-  DofChange& change = m_dofChange;
+  DofChange& change = m_mergeChange;
   change.merging = true;
   change.touched.clear();
   change.oldOfNew.resize(total);
@@ -803,7 +827,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   for (Index i = 0; i < n; ++i) change.preList[fill[change.newOfOld[Index(origin[i])]]++] = StorageIndex(i);
   auto& relabel = change.relabel;
   relabel.copies.assign(n, 0);
-  relabel.build(dropped);
+  relabel.build(dropped.data());
   change.newPerm.resize(total);
   for (Index x = 0; x < total; ++x) change.newPerm[x] = relabel.newPosition[m_P.indices()[change.oldOfNew[x]]];
   replaceDofs(a, change);
@@ -830,7 +854,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     for (Index p = change.preStart[x]; p < change.preStart[x + 1]; ++p)
       for (Index q = change.preStart[y]; q < change.preStart[y + 1]; ++q) {
         const Index u = change.preList[p], v = change.preList[q];
-        if (u == v || patternHolds(m_upper, perm[u], perm[v])) return true;
+        if (u == v || m_transposed.holds(u, v)) return true;
       }
     return false;
   };
@@ -864,8 +888,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   std::vector<char>& mark = m_workspace.mark;
   std::vector<Index> dirty;
   auto markPath = [&](Index s) { markPathToRoot(m_factor, s, mark, dirty); };
-  for (Index o = 0; o < n; ++o)
-    if (changed[o]) markPath(m_factor.colToSuper[perm[o]]);
+  for (StorageIndex o : diff.changedList) markPath(m_factor.colToSuper[perm[o]]);
   for (StorageIndex o : change.touched) markPath(m_factor.colToSuper[perm[o]]);
   if (change.merging)
     for (Index s = 0; s < m_factor.count(); ++s) {
@@ -886,8 +909,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     m_info = InvalidInput;
     return;
   }
-  Index changedCount = total - (n - Index(std::count(change.newOfOld.begin(), change.newOfOld.end(), StorageIndex(-1))));
-  for (Index o = 0; o < n; ++o) changedCount += changed[o] && change.newOfOld[o] >= 0;
+  Index changedCount = change.merging ? 0 : total - n;  // the copies, and the kept dofs that changed
+  for (StorageIndex o : diff.changedList) changedCount += change.newOfOld[o] >= 0;
 
   // 4. The new structure and input; the previous ones kept aside for a revert.
   FactorStructureBackup<Scalar, StorageIndex>& backup = m_structureBackup;
@@ -899,47 +922,85 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     const StorageIndex pi = change.newPerm[rowMajor ? x : y], pj = change.newPerm[rowMajor ? y : x];
     fresh[k] = pi >= pj ? FreshEntry<StorageIndex>{p, pi, pj} : FreshEntry<StorageIndex>{~p, pj, pi};
   }
-  std::vector<std::pair<StorageIndex, StorageIndex> > pairs;  // entries between changed dofs and copies
-  auto isChanged = [&](Index x) { return change.oldOfNew[x] < 0 || changed[change.oldOfNew[x]]; };
-  for (Index x = 0; x < total; ++x) {
-    if (!isChanged(x)) continue;
-    for (Index p = m_store.begin[x]; p < m_store.end[x]; ++p) {
-      const Index y = m_store.inner[p];
-      if (y == x || !isChanged(y)) continue;
-      const StorageIndex px = change.newPerm[x], py = change.newPerm[y];
-      pairs.emplace_back((std::max)(px, py), (std::min)(px, py));
+  // the transposed pattern follows the store: in place, each changed dof and copy gets its list
+  // anew (its unchanged neighbours kept, the changed ones read from the new store); otherwise, or
+  // when its pool holds too much garbage, it is rebuilt (the previous one becomes the spare)
+  const bool transposedInPlace = diff.inPlace && !m_transposed.wasteful();
+  if (transposedInPlace) {
+    auto isChanged = [&](Index x) { return change.oldOfNew[x] < 0 || changed[change.oldOfNew[x]]; };
+    auto& targets = diff.targets;  // changed dofs that stay and copies, new numbering (the same as the current one)
+    auto& pairs = diff.pairs;      // (y, x): the outer vector of x holds y, both changed or new
+    targets.clear();
+    pairs.clear();
+    for (StorageIndex o : diff.changedList)
+      if (change.newOfOld[o] >= 0) targets.push_back(change.newOfOld[o]);
+    for (Index x = n; x < total; ++x) targets.push_back(StorageIndex(x));
+    for (StorageIndex x : targets)
+      for (Index p = m_store.begin[x]; p < m_store.end[x]; ++p) {
+        const StorageIndex y = m_store.inner[p];
+        if (y != x && isChanged(y)) pairs.emplace_back(y, x);
+      }
+    std::sort(targets.begin(), targets.end());
+    std::sort(pairs.begin(), pairs.end());
+    m_transposed.beginRewrites(total);
+    auto& list = diff.list;
+    auto e = pairs.begin();
+    for (StorageIndex y : targets) {
+      list.clear();
+      if (y < n)  // its unchanged neighbours stay (merged dofs are changed)
+        for (Index q = m_transposed.begin[y]; q < m_transposed.end[y]; ++q)
+          if (!changed[m_transposed.pool[q]]) list.push_back(m_transposed.pool[q]);
+      for (; e != pairs.end() && e->first == y; ++e) list.push_back(e->second);
+      m_transposed.rewrite(y, list.data(), Index(list.size()));
     }
+  } else {
+    diff.spareTransposed.assign(m_store);
+    std::swap(m_transposed, diff.spareTransposed);
   }
-  remapUpperPattern(m_upper, m_Pinv.indices().data(), changed, change.relabel, pairs, diff.spareUpper);
   std::vector<Index> movedOwners;  // clean supernodes whose entries moved in the store
   if (diff.inPlace) movedOwners = ownersOfRewrites(m_factor, m_store, diff, perm);
   relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup, diff.position);
   remapAssemblyMaps(m_factor, backup, change.relabel, mark, dirty, diff.posMap, fresh, diff.position,
                     diff.inPlace ? &movedOwners : nullptr);
-  // the previous upper pattern becomes the spare (and the revert)
-  m_upper.ptr.swap(diff.spareUpper.ptr);
-  m_upper.idx.swap(diff.spareUpper.idx);
-  const PermutationType oldP = m_P;
-  m_P.resize(total);
-  for (Index i = 0; i < total; ++i) m_P.indices()[i] = change.newPerm[i];
-  m_Pinv = m_P.inverse();
-  std::vector<char> oldRemovedOriginal(total, 0), oldRemovedPermuted(total, 0);
-  oldRemovedOriginal.swap(m_removedOriginal);
-  oldRemovedPermuted.swap(m_removedPermuted);
-  std::vector<StorageIndex> oldRemovedList;
+  // the removed flags follow (only the removed dofs' entries are written)
+  std::vector<StorageIndex>& oldRemovedList = change.previousRemoved;
   oldRemovedList.swap(m_removedList);
+  m_removedList.clear();
+  for (StorageIndex i : oldRemovedList) m_removedOriginal[i] = m_removedPermuted[perm[i]] = 0;
+  m_removedOriginal.resize(total, 0);
+  m_removedPermuted.resize(total, 0);
   for (StorageIndex i : oldRemovedList) {
     const StorageIndex x = change.newOfOld[i];
     if (x < 0) continue;  // a removed dof merged away
     m_removedList.push_back(x);
-    m_removedOriginal[x] = 1;
-    m_removedPermuted[change.newPerm[x]] = 1;
+    m_removedOriginal[x] = m_removedPermuted[change.newPerm[x]] = 1;
+  }
+  // the new permutation and its inverse; the previous ones stay in change for a revert. The
+  // inverse is read off the previous one in order (the relabeling keeps the old columns' order).
+  {
+    const StorageIndex* oldPinv = m_Pinv.indices().data();
+    change.newPinv.resize(total);
+    for (Index j = 0; j < total; ++j) {
+      const StorageIndex k = change.relabel.oldPosition[j];
+      change.newPinv[j] = k < 0 ? StorageIndex(-1) : change.merging ? change.newOfOld[oldPinv[k]] : oldPinv[k];
+    }
+    for (Index x = n; x < total; ++x) change.newPinv[change.newPerm[x]] = StorageIndex(x);  // the copies
+    m_P.indices().swap(change.newPerm);
+    m_Pinv.indices().swap(change.newPinv);
   }
   const Index oldN = m_n, oldMaxBelow = m_maxBelow;
   const double oldTotalFlops = m_totalFlops;
   m_n = total;
-  m_maxBelow = m_factor.maxBelow();
-  m_totalFlops = m_factor.flops();
+  if (change.merging) {
+    m_maxBelow = m_factor.maxBelow();
+    m_totalFlops = m_factor.flops();
+  } else {  // an insertion only adds rows and columns to the dirty supernodes
+    for (Index s : dirty) {
+      const auto& node = m_factor.nodes[s];
+      m_maxBelow = (std::max)(m_maxBelow, node.below());
+      m_totalFlops += node.flops() - node.flopsOf(backup.ncols[s], Index(backup.rows[s].size()) - backup.ncols[s]);
+    }
+  }
   m_numeric.structureChanged();
 
   // 5. Refactor the dirty supernodes (or everything, when that is as cheap); or refactor the
@@ -1017,19 +1078,23 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     m_failedColumn = m_Pinv.indices()[bad];
     restoreFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
     diff.revert(m_store);
-    m_upper.ptr.swap(diff.spareUpper.ptr);
-    m_upper.idx.swap(diff.spareUpper.idx);
-    m_P = oldP;
-    m_Pinv = m_P.inverse();
+    if (transposedInPlace)
+      m_transposed.revert();
+    else
+      std::swap(m_transposed, diff.spareTransposed);
+    for (StorageIndex x : m_removedList) m_removedOriginal[x] = m_removedPermuted[m_P.indices()[x]] = 0;
+    m_P.indices().swap(change.newPerm);
+    m_Pinv.indices().swap(change.newPinv);
+    m_removedOriginal.resize(oldN, 0);
+    m_removedPermuted.resize(oldN, 0);
+    m_removedList.swap(oldRemovedList);
+    for (StorageIndex i : m_removedList) m_removedOriginal[i] = m_removedPermuted[m_P.indices()[i]] = 1;
     {  // (the rare failure path rebuilds the assembly maps from the previous matrix)
       std::vector<StorageIndex> previousPerm(m_P.indices().data(), m_P.indices().data() + oldN);
       PermutedLowerEntries<StorageIndex> lower;
       permuteTriangle<rowMajor>(m_store, previousPerm, lower, static_cast<CompressedPattern<StorageIndex>*>(nullptr));
       buildAssemblyMaps(lower, m_factor);
     }
-    m_removedOriginal.swap(oldRemovedOriginal);
-    m_removedPermuted.swap(oldRemovedPermuted);
-    m_removedList.swap(oldRemovedList);
     m_n = oldN;
     m_maxBelow = oldMaxBelow;
     m_totalFlops = oldTotalFlops;
@@ -1053,11 +1118,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     diff.commit(m_store);
     m_info = Success;
   }
-  for (Index s : dirty) {
-    mark[s] = 0;
-    backup.values[s].resize(0, 0);  // the previous blocks are not kept past the call
-    std::vector<Scalar>().swap(backup.cache[s]);
-  }
+  for (Index s : dirty) mark[s] = 0;
+  backup.release(m_factor, dirty);  // the previous blocks are not kept past the call
   recordUpdate(route, changedCount, dirty, spentFlops, start);
 }
 
@@ -1078,9 +1140,9 @@ Matrix<typename MatrixType_::Scalar, Dynamic, Dynamic> UpdatableSupernodalLLT<Ma
       columns[r] = m_P.indices()[m_removedList[r]];
       x.row(columns[r]) = known.row(m_removedList[r]);
     }
-    internal::updatable_cholesky::subtractDirichletCoupling(m_factor, m_upper, m_store.values.data(),
-                                                            m_removedPermuted.data(), columns, x.data(), x.rows(),
-                                                            x.cols());
+    internal::updatable_cholesky::subtractDirichletCoupling<bool(MatrixType::IsRowMajor)>(
+        m_store, m_transposed, m_P.indices().data(), m_Pinv.indices().data(), m_removedPermuted.data(), columns,
+        x.data(), x.rows(), x.cols());
   }
   solveInPlacePermuted(x);
   Matrix<Scalar, Dynamic, Dynamic> result;
