@@ -42,20 +42,6 @@ struct DofRelabeling {
     * for the columns after breaks[j] (an old column with copies, or a dropped one), increasing. */
   std::vector<StorageIndex> breaks;
   std::vector<StorageIndex> shiftAfter;
-  /** Per block of 2^BlockBits old columns: the first break at or after its start, and the shift
-    * there, so that moved() reads one small table and, in a block with breaks, a few of them. */
-  enum { BlockBits = 12 };
-  std::vector<StorageIndex> blockBreak, blockShift;
-
-  /** newPosition[k] of a kept old column k, from the breaks (no read of the n-long array, which
-    * a gather in the user's order would read at random). */
-  StorageIndex moved(StorageIndex k) const {
-    const Index b = Index(k) >> BlockBits, nb = Index(breaks.size());
-    Index j = blockBreak[b];
-    StorageIndex shift = blockShift[b];
-    while (j < nb && breaks[j] < k) shift = shiftAfter[j++];
-    return StorageIndex(k + shift);
-  }
 
   /** Renumbers the increasing kept old columns [first, last) in place (as newPosition would,
     * reading the few breaks instead of n positions). */
@@ -94,14 +80,6 @@ struct DofRelabeling {
       }
     }
     newSize = next;
-    const Index blocks = (n >> BlockBits) + 1;
-    blockBreak.resize(blocks);
-    blockShift.resize(blocks);
-    for (Index b = 0, j = 0; b < blocks; ++b) {
-      while (j < Index(breaks.size()) && Index(breaks[j]) < (b << BlockBits)) ++j;
-      blockBreak[b] = StorageIndex(j);
-      blockShift[b] = j > 0 ? shiftAfter[j - 1] : StorageIndex(0);
-    }
     firstMoved = 0;
     while (firstMoved < n && newPosition[firstMoved] == firstMoved) ++firstMoved;
     oldPosition.assign(newSize, StorageIndex(-1));

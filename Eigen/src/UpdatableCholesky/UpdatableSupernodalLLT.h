@@ -772,7 +772,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   // each copy right after its origin, copies of one origin in increasing order
   change.newPerm.resize(total);
   change.placed.resize(n, 0);  // (zero between calls)
-  for (Index i = 0; i < n; ++i) change.newPerm[i] = relabel.moved(perm[i]);
+  for (Index i = 0; i < n; ++i) change.newPerm[i] = relabel.newPosition[perm[i]];
   for (Index i = n; i < total; ++i) {
     const StorageIndex po = perm[change.preList[i]];
     change.newPerm[i] = StorageIndex(relabel.newPosition[po] + 1 + change.placed[po]++);
