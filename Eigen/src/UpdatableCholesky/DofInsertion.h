@@ -38,46 +38,20 @@ struct DofRelabeling {
   std::vector<StorageIndex> oldPosition;  ///< new permuted -> old permuted, or -1 for a copy
   Index newSize = 0;
   Index firstMoved = 0;  ///< old permuted columns below this one keep their position
-  /** The shift newPosition[k] - k of a kept column as a step function: it becomes shiftAfter[j]
-    * for the columns after breaks[j] (an old column with copies, or a dropped one), increasing. */
-  std::vector<StorageIndex> breaks;
-  std::vector<StorageIndex> shiftAfter;
-
-  /** Renumbers the increasing kept old columns [first, last) in place (as newPosition would,
-    * reading the few breaks instead of n positions). */
-  template <typename Iterator>
-  void renumberIncreasing(Iterator first, Iterator last) const {
-    if (first == last) return;
-    Index j = std::lower_bound(breaks.begin(), breaks.end(), *first) - breaks.begin();
-    const Index nb = Index(breaks.size());
-    StorageIndex shift = j > 0 ? shiftAfter[j - 1] : StorageIndex(0);
-    for (; first != last; ++first) {
-      while (j < nb && breaks[j] < *first) shift = shiftAfter[j++];
-      *first += shift;
-    }
-  }
 
   /** Fills newPosition and oldPosition from copies and the dropped flags (both by old permuted
     * column; \a dropped null: none). */
   void build(const char* dropped) {
     const Index n = Index(copies.size());
     newPosition.resize(n);
-    breaks.clear();
-    shiftAfter.clear();
     Index next = 0;
     for (Index k = 0; k < n; ++k) {
       if (dropped && dropped[k]) {
         newPosition[k] = StorageIndex(-1);
-        breaks.push_back(StorageIndex(k));
-        shiftAfter.push_back(StorageIndex(next - k - 1));
         continue;
       }
       newPosition[k] = StorageIndex(next);
       next += 1 + copies[k];
-      if (copies[k] > 0) {
-        breaks.push_back(StorageIndex(k));
-        shiftAfter.push_back(StorageIndex(next - k - 1));
-      }
     }
     newSize = next;
     firstMoved = 0;
@@ -136,8 +110,9 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
     backup.firstCol[s] = node.firstCol;
     backup.ncols[s] = node.ncols;
     if (!mark[s]) {  // (rows are increasing: those before the first moved column stay)
-      relabel.renumberIncreasing(std::lower_bound(node.rows.begin(), node.rows.end(), StorageIndex(relabel.firstMoved)),
-                                 node.rows.end());
+      for (auto r = std::lower_bound(node.rows.begin(), node.rows.end(), StorageIndex(relabel.firstMoved));
+           r != node.rows.end(); ++r)
+        *r = relabel.newPosition[*r];
     } else {
       backup.rows[s].swap(node.rows);
       backup.values[s].swap(node.values);
