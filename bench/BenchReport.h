@@ -21,6 +21,20 @@
 namespace bench {
 
 /** \returns \a v with \a precision decimals, "-" for NaN. */
+/** The vector instruction set this benchmark was compiled for (our code and Eigen's; CHOLMOD's
+  * dense work runs in OpenBLAS, which picks its kernels at run time). */
+inline const char* compiledInstructionSet() {
+#if defined(__AVX512F__)
+  return "AVX-512";
+#elif defined(__AVX2__) && defined(__FMA__)
+  return "AVX2 + FMA";
+#elif defined(__AVX__)
+  return "AVX";
+#else
+  return "generic x86-64 (SSE2)";
+#endif
+}
+
 inline std::string fmt(double v, int precision = 2)
 {
   if (std::isnan(v)) return "-";

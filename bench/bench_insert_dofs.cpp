@@ -734,6 +734,8 @@ int main(int argc, char** argv)
               kShift, options.seams, options.seed, options.repeats);
   std::printf("  every time is update + one solve (b uniform in [-1,1]), methods interleaved per seam after one "
               "warm-up seam\n");
+  std::printf("  compiled for %s (ours, Eigen; CHOLMOD's BLAS picks its kernels at run time)\n",
+              bench::compiledInstructionSet());
 
   const bool allOk = bench::forEachMesh("bench_insert_dofs", options.grid, options.meshes,
                                          [&](const std::string& name, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {

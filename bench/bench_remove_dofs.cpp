@@ -725,6 +725,8 @@ int main(int argc, char** argv)
               kShift, options.seams, options.seed, options.repeats);
   std::printf("  every time is update + Dirichlet solve (A_II x_I = b_I - A_IB g, x_B = g; b, g uniform in [-1,1]), "
               "methods interleaved per seam after one warm-up seam\n");
+  std::printf("  compiled for %s (ours, Eigen; CHOLMOD's BLAS picks its kernels at run time)\n",
+              bench::compiledInstructionSet());
 
   const bool allOk = bench::forEachMesh("bench_remove_dofs", options.grid, options.meshes,
                                          [&](const std::string& name, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {

@@ -48,14 +48,17 @@ struct SplitGraph {
   }
 
   /** Splits the vertices \a origins: each gets a copy (n, n+1, ...) that takes a random half of
-    * its edges, and sometimes an edge to its origin. \returns the origin vector (cut_mesh's I). */
-  std::vector<int> split(const std::vector<int>& origins, std::mt19937& g) {
+    * its edges, and sometimes an edge to its origin, and the origin's margin. With \a pure, the
+    * copy gets half of the origin's margin and no edge to it: glued back (copies added onto their origins)
+    * the matrix is the one before, as when a mesh is cut. \returns the origin vector (cut_mesh's I). */
+  std::vector<int> split(const std::vector<int>& origins, std::mt19937& g, bool pure = false) {
     std::vector<int> origin(n + origins.size());
     for (Index i = 0; i < n; ++i) origin[i] = int(i);
     std::vector<Index> copyOf(n, -1);
     for (std::size_t k = 0; k < origins.size(); ++k) {
       copyOf[origins[k]] = n + Index(k);
       origin[n + k] = origins[k];
+      if (pure) margin[origins[k]] /= 2;  // (shared out: each keeps a positive margin)
       margin.push_back(margin[origins[k]]);
     }
     std::map<std::pair<Index, Index>, Scalar> next;
@@ -66,7 +69,7 @@ struct SplitGraph {
       next[std::make_pair((std::min)(i, j), (std::max)(i, j))] += e.second;
     }
     for (int o : origins)
-      if (g() % 2) next[std::make_pair(Index(o), copyOf[o])] = Scalar(0.5);
+      if (!pure && g() % 2) next[std::make_pair(Index(o), copyOf[o])] = Scalar(0.5);
     edges.swap(next);
     n += Index(origins.size());
     return origin;
@@ -158,7 +161,8 @@ typename Cfg::FullMatrix meshLaplacian(bool closed) {
   * changes, checking every step. \returns how many splits and merges took the Mixed route
   * (refactorization below, signed low-rank folds on top). */
 template <typename Cfg>
-int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route, int steps, unsigned seed) {
+int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route, int steps, unsigned seed,
+                   bool pureCuts = false) {
   typedef typename Cfg::FullMatrix FullMatrix;
   std::mt19937 g(seed);
   SplitGraph<typename Cfg::Scalar> G = graphOf<Cfg>(A0);
@@ -191,7 +195,7 @@ int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route,
         if (std::find(origins.begin(), origins.end(), v) == origins.end()) origins.push_back(v);
       }
       splits.push_back(Split{G, {}});
-      splits.back().origin = G.split(origins, g);
+      splits.back().origin = G.split(origins, g, pureCuts);
       llt.insertDofs(toInput<Cfg>(G.template matrix<FullMatrix>()), splits.back().origin);
       REQUIRE(llt.info() == Eigen::Success);
       CHECK(llt.lastUpdate().changedColumns >= Index(origins.size()));
@@ -280,6 +284,13 @@ TEST_CASE_TEMPLATE("insertDofs/mergeDofs sequences match a fresh factorization",
     const int mixed = randomSequence<Cfg>(meshLaplacian<Cfg>(false), Eigen::UpdateRoute::Mixed, steps, 6);
     if (Cfg::isPrimary) CHECK(mixed > 0);  // (a natural or reversed order has no top to fold into)
   }
+  SUBCASE("grid Laplacian, cuts that glue back (one-signed changes of the copies' rank), automatic") {
+    randomSequence<Cfg>(meshLaplacian<Cfg>(false), Eigen::UpdateRoute::Automatic, steps, 9, true);
+  }
+  SUBCASE("grid Laplacian, cuts that glue back, mixed route") {
+    const int mixed = randomSequence<Cfg>(meshLaplacian<Cfg>(false), Eigen::UpdateRoute::Mixed, steps, 10, true);
+    if (Cfg::isPrimary) CHECK(mixed > 0);
+  }
   SUBCASE("random sparse matrix, mixed route") {
     std::mt19937 g(7);
     const typename Cfg::FullMatrix A =
@@ -342,6 +353,67 @@ TEST_CASE_TEMPLATE("merges of older copies and long cut/merge chains", Cfg, UC_C
     checkAgainstFresh<Cfg>(llt, G.template matrix<FullMatrix>(), g, lowRankTolerance<Cfg>());
   }
   if (Cfg::isPrimary) CHECK(olderMerges > 0);
+}
+
+TEST_CASE_TEMPLATE("gluing a cut back finds where it differs from the uncut matrix", Cfg, UC_CORE_CONFIGS) {
+  // The rank bound of the mixed route (LowRankTopUpdate.h) counts the copies, plus the dofs
+  // where the cut matrix, glued back, is not the uncut one: a cut that only shares out entries
+  // has none; a changed diagonal is a small or a large mismatch; a changed edge flags both ends.
+  typedef typename Cfg::FullMatrix FullMatrix;
+  typedef typename Cfg::Scalar Scalar;
+  typedef typename Cfg::StorageIndex StorageIndex;
+  typedef Eigen::internal::updatable_cholesky::InputStore<Scalar, StorageIndex> Store;
+  typedef Eigen::internal::updatable_cholesky::OuterRange Range;
+  constexpr int UpLo = Cfg::UpLo;
+  constexpr bool rowMajor = bool(FullMatrix::IsRowMajor);
+  std::mt19937 g(21);
+  SplitGraph<Scalar> G = graphOf<Cfg>(meshLaplacian<Cfg>(false));
+  const FullMatrix A = G.template matrix<FullMatrix>();
+  const Index n = A.rows();
+  const std::vector<int> origin = G.split({3, 40, 41, 100}, g, true);
+  FullMatrix C = G.template matrix<FullMatrix>();
+  auto mismatches = [&](const FullMatrix& cut) {
+    FullMatrix compressed = cut;
+    compressed.makeCompressed();
+    Store cutStore, uncutStore;
+    cutStore.template assign<UpLo>(compressed);
+    uncutStore.template assign<UpLo>(A);
+    std::vector<Range> cutRanges, uncutRanges;
+    for (Index o = 0; o < cutStore.outerSize(); ++o) cutRanges.push_back(Range{o, cutStore.begin[o], cutStore.end[o]});
+    for (Index o = 0; o < uncutStore.outerSize(); ++o)
+      uncutRanges.push_back(Range{o, uncutStore.begin[o], uncutStore.end[o]});
+    std::vector<char> flag(n, 0);
+    std::vector<StorageIndex> out;
+    Eigen::internal::updatable_cholesky::gluingMismatches<rowMajor>(
+        cutStore, cutRanges, [&](Index x) { return Index(origin[x]); }, uncutStore, uncutRanges, flag, out);
+    std::map<Index, int> result;
+    for (StorageIndex x : out) result[Index(x)] = flag[x];
+    return result;
+  };
+  CHECK(mismatches(C).empty());
+  typedef typename Cfg::RealScalar Real;
+  FullMatrix D = C;
+  // above 64 roundings, below sqrt(eps): a small mismatch at the origin of the copy (40)
+  const Real tiny = Real(1000) * Eigen::NumTraits<Real>::epsilon();
+  D.coeffRef(n + 1, n + 1) += Scalar(tiny * Eigen::numext::real(D.coeff(n + 1, n + 1)));
+  std::map<Index, int> small = mismatches(D);
+  CHECK(small.size() == 1);
+  CHECK(small[40] == 1);
+  FullMatrix E = C;
+  const Index u = 3, v = 2;  // an edge of the grid from an origin to a vertex that is not cut
+  REQUIRE(A.coeff(u, v) != Scalar(0));
+  E.coeffRef(u, v) += Scalar(Real(0.25));
+  E.coeffRef(v, u) += Scalar(Real(0.25));
+  if (C.coeff(u, v) == Scalar(0)) {  // the edge went to the copy of 3
+    E.coeffRef(u, v) = Scalar(0);
+    E.coeffRef(v, u) = Scalar(0);
+    E.coeffRef(n, v) += Scalar(Real(0.25));
+    E.coeffRef(v, n) += Scalar(Real(0.25));
+  }
+  std::map<Index, int> large = mismatches(E);
+  CHECK(large.size() == 2);
+  CHECK(large[u] == 2);
+  CHECK(large[v] == 2);
 }
 
 TEST_CASE_TEMPLATE("insertDofs refactors only the dirty part", Cfg, uctest::d_int_col_lower_amd) {

@@ -66,6 +66,8 @@ struct InputDiff {
   TransposedPattern<StorageIndex> spareTransposed;  ///< rebuilt: the previous transposed pattern (the revert)
   std::vector<StorageIndex> targets, list;       ///< scratch: the dofs whose transposed lists are rewritten
   std::vector<std::pair<StorageIndex, StorageIndex> > pairs;  ///< scratch: entries between changed dofs
+  std::vector<char> mismatch;  ///< scratch by new dof, zero between uses (gluingMismatches())
+  std::vector<StorageIndex> mismatchList;  ///< the dofs where the cut matrix does not glue back
 
   /** Makes posMap the identity on the positions of \a store. */
   void resetPositions(const InputStore<Scalar, StorageIndex>& store) {
@@ -111,9 +113,9 @@ struct InputDiff {
 
   /** Bytes held by the scratch arrays and spare buffers. */
   Index bytes() const {
-    return Index(changed.capacity() + (stamp.capacity() + fresh.capacity()) * sizeof(Index) +
+    return Index(changed.capacity() + mismatch.capacity() + (stamp.capacity() + fresh.capacity()) * sizeof(Index) +
                  (posMap.capacity() + freshOuter.capacity() + position.capacity() + changedList.capacity() +
-                  targets.capacity() + list.capacity() + 2 * pairs.capacity()) *
+                  targets.capacity() + list.capacity() + mismatchList.capacity() + 2 * pairs.capacity()) *
                      sizeof(StorageIndex) +
                  spare.bytes() + spareTransposed.bytes() + rewrites.capacity() * sizeof(Rewrite));
   }
@@ -264,6 +266,80 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
     std::swap(store, d.spare);
   }
   return true;
+}
+
+/** \internal A range of one outer vector in a store's pool. */
+struct OuterRange {
+  Index outer, begin, end;
+};
+
+/** \internal Where the cut matrix C, glued back (each dof of C added onto the dof \a glue(x) of G
+  * that it copies or is), differs from the matrix G (paper §4.2, eq. 17/18). A cut that only
+  * shares out the entries of each origin among it and its copies, as cutting a mesh does to any
+  * assembled matrix (Laplacian, mass matrix), glues back to G exactly; then, written in the
+  * variables (the last copy, the differences to it), the cut only adds rows and columns, one per
+  * copy, and every Schur complement above them changes by one-signed terms of rank at most the
+  * copies below (one row addition each). Each dof of G listed here adds at most one to that rank.
+  * Only the outer vectors that may differ are read: \a cutRanges of C and \a gluedRanges of G
+  * (the others are equal, and glue to equal vectors, by construction). An entry counts as equal
+  * when it differs by at most 64 roundings of the magnitudes that make it. Appends the G dofs of
+  * the differing entries to \a out, once each, and marks them in \a flag (by G dof, zero on entry
+  * for the dofs not in \a out): 2 when some entry of theirs differs by more than sqrt(eps) of its
+  * magnitudes, else 1 (a small mismatch, such as a regularization added to every diagonal). */
+template <bool RowMajor, typename Scalar, typename StorageIndex, typename Glue>
+void gluingMismatches(const InputStore<Scalar, StorageIndex>& cut, const std::vector<OuterRange>& cutRanges, Glue&& glue,
+                      const InputStore<Scalar, StorageIndex>& glued, const std::vector<OuterRange>& gluedRanges,
+                      std::vector<char>& flag, std::vector<StorageIndex>& out) {
+  typedef typename NumTraits<Scalar>::Real RealScalar;
+  struct Term {
+    Index row, col;
+    Scalar value;
+    RealScalar magnitude;
+  };
+  std::vector<Term> terms;
+  auto add = [&terms](Index r, Index c, const Scalar& v) {  // entry (r, c) of a Hermitian matrix, as (max, min)
+    if (r >= c)
+      terms.push_back(Term{r, c, v, numext::abs(v)});
+    else
+      terms.push_back(Term{c, r, numext::conj(v), numext::abs(v)});
+  };
+  auto read = [&](const InputStore<Scalar, StorageIndex>& store, const std::vector<OuterRange>& ranges, bool isCut) {
+    for (const OuterRange& range : ranges)
+      for (Index q = range.begin; q < range.end; ++q) {
+        const Index o = range.outer, i = store.inner[q];
+        const Index r = RowMajor ? o : i, c = RowMajor ? i : o;
+        const Scalar v = store.values[q];
+        if (!isCut) {
+          add(r, c, -v);
+          continue;
+        }
+        const Index gr = glue(r), gc = glue(c);
+        add(gr, gc, gr == gc && r != c ? v + numext::conj(v) : v);  // (r, c) and (c, r) both glue onto the diagonal
+      }
+  };
+  read(cut, cutRanges, true);
+  read(glued, gluedRanges, false);
+  std::sort(terms.begin(), terms.end(),
+            [](const Term& a, const Term& b) { return a.row < b.row || (a.row == b.row && a.col < b.col); });
+  const RealScalar roundings = RealScalar(64) * NumTraits<RealScalar>::epsilon();
+  const RealScalar small = numext::sqrt(NumTraits<RealScalar>::epsilon());
+  for (std::size_t k = 0; k < terms.size();) {
+    std::size_t e = k;
+    Scalar sum(0);
+    RealScalar magnitude(0);
+    for (; e < terms.size() && terms[e].row == terms[k].row && terms[e].col == terms[k].col; ++e) {
+      sum += terms[e].value;
+      magnitude += terms[e].magnitude;
+    }
+    if (!(numext::abs(sum) <= roundings * magnitude)) {
+      const char level = numext::abs(sum) <= small * magnitude ? 1 : 2;
+      for (Index x : {terms[k].row, terms[k].col}) {
+        if (!flag[x]) out.push_back(StorageIndex(x));
+        flag[x] = (std::max)(flag[x], level);
+      }
+    }
+    k = e;
+  }
 }
 
 /** \internal The supernodes (old numbering, before relabelFactor()) owning an entry of an outer

@@ -6,10 +6,13 @@
 // dirty. Near the change they gain or lose rows and columns and are refactored (Algorithm 4).
 // Higher up, a dirty supernode often keeps its rows, its columns and its input: its values
 // change only through the update matrices its refactored children pass up. The change of a
-// child's update matrix, U' − U = L21' L21'^H − L21 L21^H, has at most the rank of the input
-// change below it (twice its changed columns), so it is split into P P^H − N N^H (a QR of
-// [L21' L21] and an eigendecomposition of the small core; eigenvalues at rounding level are
-// dropped) and folded into that top part: first the update P (Givens rotations or blocked LQ,
+// child's update matrix, U' − U = L21' L21'^H − L21 L21^H, has a small rank: written in the
+// variables (last copy, differences to it), a cut that glues back to the uncut matrix only adds
+// one row and column per copy (a row addition, Davis & Hager), so U' − U is one-signed of rank
+// at most the copies below; a merge removes them again. Each dof where the cut does not glue
+// back adds one (gluingMismatches()). The change is split into P P^H − N N^H (a sampled range
+// and an eigendecomposition of the small core; eigenvalues at rounding level are dropped) and
+// folded into that top part: first the update P (Givens rotations or blocked LQ,
 // as for removals), then the downdate N (hyperbolic rotations), along the paths to the roots.
 // The cached update matrices of the top get the matching ± corrections, deferred. Each top
 // supernode then costs ~4 · rank · rows · columns instead of its refactorization and its
@@ -91,8 +94,7 @@ inline double updateChangeFlops(double m, double rank) {
 
 /** \internal Splits the change D = U' − U of a cached update matrix (m × m, lower triangles,
   * column-major) into P P^H − N N^H with as few columns as its numerical rank, which is at most
-  * \a rankBound (twice the changed columns below: a Schur complement changes by at most the rank
-  * of the change of the matrix). The range of D is sampled with rankBound + a few random
+  * \a rankBound (see topUpdatePlan(); a wrong bound is caught by the check below). The range of D is sampled with rankBound + a few random
   * vectors (deterministic signs), D is checked to lie in that range, and the small projected
   * matrix is diagonalized; eigenvalues at rounding level are dropped. \returns false when D is
   * not captured (the bound did not hold); \a flops gets the work. */
@@ -161,47 +163,55 @@ bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index r
 /** \internal Splits the dirty supernodes \a dirty (increasing) of a structural change into a
   * \a bottom part to refactor and a \a top part (closed under taking parents, every supernode of
   * it flagged in \a eligible: same rows, columns and input as before) to update by signed folds,
-  * by a dynamic program on flop estimates. \a changedColumns: per supernode, its columns whose
-  * input changed, which are new or which went (read on dirty supernodes only). With \a force,
+  * by a dynamic program on flop estimates. \a rankColumns: per supernode, how much its columns
+  * add to the rank of the change of an update matrix above them (read on dirty supernodes only):
+  * one per copy or merged dof and per dof where the cut does not glue back (gluingMismatches()):
+  * the bound the split samples with. \a likelyRankColumns: the same without the dofs whose
+  * mismatch is small (at most sqrt(eps) of its entries), which a change far above mostly drops
+  * (below rounding): the rank the costs are estimated with. With \a force,
   * the top is as large as allowed. Lists in \a boundary each refactored child c of the top with
   * the rank bound of its update matrix's change. \returns the estimated
   * cost of the plan in refactorization flops (fold flops weighted by FoldFlopWeight). */
 template <typename Scalar, typename StorageIndex>
 double topUpdatePlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& dirty,
-                     const std::vector<char>& eligible, const std::vector<Index>& changedColumns,
+                     const std::vector<char>& eligible, const std::vector<Index>& rankColumns,
+                     const std::vector<Index>& likelyRankColumns,
                      const char* removed, bool force,
                      std::vector<Index>& bottom, std::vector<Index>& top,
                      std::vector<std::pair<Index, Index> >& boundary, UpdateWorkspace<Scalar>& ws) {
   const Index count = Index(dirty.size());
   const double never = std::numeric_limits<double>::infinity();
-  std::vector<double> refactor(count), folded(count), split(count), changedBelow(count), rankIn(count, 0.0),
-      rankOut(count), rankBoundary(count), childPart(count, 0.0);
+  std::vector<double> refactor(count), folded(count), split(count), rankBelow(count), likelyBelow(count),
+      rankIn(count, 0.0), rankOut(count), rankBoundary(count), likelyBoundary(count), childPart(count, 0.0);
   std::vector<Index> start(count);
   std::vector<Index>& position = ws.local;  // supernode -> 1 + its position in dirty
   for (Index k = 0; k < count; ++k) position[dirty[k]] = k + 1;
   for (Index k = 0; k < count; ++k) start[k] = f.nodes[dirty[k]].ncols;
-  for (Index k = 0; k < count; ++k) changedBelow[k] = double(changedColumns[dirty[k]]);
+  for (Index k = 0; k < count; ++k) rankBelow[k] = double(rankColumns[dirty[k]]);
+  for (Index k = 0; k < count; ++k) likelyBelow[k] = double(likelyRankColumns[dirty[k]]);
   for (Index k = 0; k < count; ++k) refactor[k] = 0;
   for (Index k = 0; k < count; ++k) {  // children before parents
     const Index s = dirty[k];
     const auto& node = f.nodes[s];
     const double nr = double(node.nrows()), nc = double(node.ncols), m = double(node.below());
     refactor[k] += frontFlops(node, removed);
-    rankBoundary[k] = (std::min)(m, 2.0 * changedBelow[k]);
+    rankBoundary[k] = (std::min)(m, rankBelow[k]);
+    likelyBoundary[k] = (std::min)(m, likelyBelow[k]);
     split[k] = FoldFlopWeight * updateChangeFlops(m, rankBoundary[k]);
     if (eligible[s]) {
       folded[k] = FoldFlopWeight * foldFlops(rankIn[k], nr, nc, double(start[k])) + childPart[k];
       rankOut[k] = (std::min)(m, rankIn[k]);
     } else {
       folded[k] = never;
-      rankOut[k] = rankBoundary[k];
+      rankOut[k] = likelyBoundary[k];
     }
     const Index p = f.parent[s];
     if (p == -1) continue;
     const Index q = position[p] - 1;
     refactor[q] += refactor[k];
-    changedBelow[q] += changedBelow[k];
-    rankIn[q] += (std::min)(rankOut[k], rankBoundary[k]);
+    rankBelow[q] += rankBelow[k];
+    likelyBelow[q] += likelyBelow[k];
+    rankIn[q] += (std::min)(rankOut[k], likelyBoundary[k]);
     childPart[q] += (std::min)(folded[k], refactor[k] + split[k]);
     start[q] = (std::min)(start[q], Index(node.parentPosition[0]));
   }

@@ -398,6 +398,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     std::vector<StorageIndex> previousRemoved;  ///< the removed dofs before the call (for a revert)
     internal::updatable_cholesky::DofRelabeling<StorageIndex> relabel;
     bool merging = false;
+    bool layoutReady = false;  ///< relabel and newPerm are built (buildInsertionLayout())
     /** Bytes held. */
     Index bytes() const {
       return Index((oldOfNew.capacity() + newOfOld.capacity() + preStart.capacity() + preList.capacity() +
@@ -411,6 +412,12 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   DofChange m_insertChange, m_mergeChange;
   internal::updatable_cholesky::FactorStructureBackup<Scalar, StorageIndex> m_structureBackup;  ///< their revert
   void replaceDofs(const MatrixType& matrix, DofChange& change);
+  /** The relabeling of the permuted columns and the new permutation of an insertion (each copy
+    * right after its origin), from the copies counted in \a change. */
+  void buildInsertionLayout(DofChange& change);
+  /** After the input diff of replaceDofs(): the dofs (new numbering) where the cut matrix, glued
+    * back, differs from the uncut one (internal::updatable_cholesky::gluingMismatches()). */
+  const std::vector<StorageIndex>& gluingMismatchesOf(const DofChange& change);
   /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty and spent
     * \a flops (all of a refactorization's, reduced fronts counted on their kept rows). */
   void recordUpdate(UpdateRoute route, Index changedColumns, const std::vector<Index>& dirty, double flops,
@@ -768,6 +775,20 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     change.touched.push_back(o);
   }
   change.preStart[total] = StorageIndex(total);
+  change.layoutReady = false;
+  if (total > n) buildInsertionLayout(change);  // (without copies, only once the matrix is known to differ)
+  std::vector<StorageIndex> originPositions(change.touched.size());
+  for (std::size_t k = 0; k < originPositions.size(); ++k) originPositions[k] = perm[change.touched[k]];
+  replaceDofs(a, change);
+  for (StorageIndex po : originPositions) relabel.copies[po] = change.placed[po] = 0;  // zero again
+  return *this;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildInsertionLayout(DofChange& change) {
+  const Index n = m_n, total = Index(change.oldOfNew.size());
+  const StorageIndex* perm = m_P.indices().data();
+  auto& relabel = change.relabel;
   relabel.build(nullptr);
   // each copy right after its origin, copies of one origin in increasing order
   change.newPerm.resize(total);
@@ -777,11 +798,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     const StorageIndex po = perm[change.preList[i]];
     change.newPerm[i] = StorageIndex(relabel.newPosition[po] + 1 + change.placed[po]++);
   }
-  std::vector<StorageIndex> originPositions(change.touched.size());
-  for (std::size_t k = 0; k < originPositions.size(); ++k) originPositions[k] = perm[change.touched[k]];
-  replaceDofs(a, change);
-  for (StorageIndex po : originPositions) relabel.copies[po] = change.placed[po] = 0;  // zero again
-  return *this;
+  change.layoutReady = true;
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
@@ -830,8 +847,48 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   relabel.build(dropped.data());
   change.newPerm.resize(total);
   for (Index x = 0; x < total; ++x) change.newPerm[x] = relabel.newPosition[m_P.indices()[change.oldOfNew[x]]];
+  change.layoutReady = true;
   replaceDofs(a, change);
   return *this;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+const std::vector<typename MatrixType_::StorageIndex>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::gluingMismatchesOf(
+    const DofChange& change) {
+  using namespace internal::updatable_cholesky;
+  InputDiff<Scalar, StorageIndex>& diff = m_inputDiff;
+  const Index total = m_store.outerSize(), n = Index(change.newOfOld.size());
+  // the new store holds the new matrix; the previous one is in the spare (rebuilt) or, for the
+  // outer vectors rewritten in place, still at their previous ranges of the pool
+  const InputStore<Scalar, StorageIndex>& previous = diff.inPlace ? m_store : diff.spare;
+  std::vector<OuterRange> newRanges, oldRanges;
+  if (diff.inPlace) {
+    for (const auto& r : diff.rewrites) {
+      oldRanges.push_back(OuterRange{r.outer, r.begin, r.end});
+      if (r.outer < total) newRanges.push_back(OuterRange{r.outer, m_store.begin[r.outer], m_store.end[r.outer]});
+    }
+  } else {
+    for (StorageIndex o : diff.changedList) {
+      oldRanges.push_back(OuterRange{o, previous.begin[o], previous.end[o]});
+      const Index x = change.newOfOld[o];
+      if (x >= 0) newRanges.push_back(OuterRange{x, m_store.begin[x], m_store.end[x]});
+    }
+  }
+  diff.mismatch.resize((std::max)(n, total), 0);
+  diff.mismatchList.clear();
+  constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
+  if (!change.merging) {  // the new matrix is cut: old dofs glue onto themselves, copies onto their origins
+    for (Index x = n; x < total; ++x) newRanges.push_back(OuterRange{x, m_store.begin[x], m_store.end[x]});
+    gluingMismatches<rowMajor>(m_store, newRanges, [&change](Index x) { return Index(change.preList[x]); },
+                               previous, oldRanges, diff.mismatch, diff.mismatchList);
+  } else {  // the previous matrix is cut: each previous dof glues onto the kept dof it stands for
+    std::vector<StorageIndex> keptOf(n);
+    for (Index x = 0; x < total; ++x)
+      for (Index p = change.preStart[x]; p < change.preStart[x + 1]; ++p) keptOf[change.preList[p]] = StorageIndex(x);
+    gluingMismatches<rowMajor>(previous, oldRanges, [&keptOf](Index i) { return Index(keptOf[i]); }, m_store,
+                               newRanges, diff.mismatch, diff.mismatchList);
+  }
+  return diff.mismatchList;
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
@@ -884,6 +941,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     recordUpdate(UpdateRoute::PartialRefactorization, 0, std::vector<Index>(), 0.0, start);
     return;
   }
+  if (!change.layoutReady) buildInsertionLayout(change);
   // 3. Dirty supernodes: the paths from the changed columns, origins and merged dofs to the roots.
   std::vector<char>& mark = m_workspace.mark;
   std::vector<Index> dirty;
@@ -1013,23 +1071,30 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   double plannedFlops = dirtyFlops;
   if (m_route != UpdateRoute::PartialRefactorization && m_route != UpdateRoute::Refactorization &&
       m_numeric.hasCachedUpdates() && !dirty.empty()) {
-    // a dirty supernode may be folded when it keeps its rows and columns and no column of it changed
+    // a dirty supernode may be folded when it keeps its rows and columns and no column of it
+    // changed. The change it gets from below has at most the rank of the copies (merged dofs)
+    // below, plus the dofs where the cut matrix does not glue back to the uncut one.
+    const std::vector<StorageIndex>& mismatched = gluingMismatchesOf(change);  // (flags in diff.mismatch)
     const Index ns = m_factor.count();
     std::vector<char> eligible(ns, 0);
-    std::vector<Index> changedColumns(ns, 0);
+    std::vector<Index> rankColumns(ns, 0), likelyRankColumns(ns, 0);
     for (Index s : dirty) {
       const auto& node = m_factor.nodes[s];
+      bool same = true;
       for (Index c = node.firstCol; c < node.firstCol + node.ncols; ++c) {
-        const StorageIndex o = change.oldOfNew[m_Pinv.indices()[c]];
-        changedColumns[s] += o < 0 || changed[o];
+        const StorageIndex x = m_Pinv.indices()[c], o = change.oldOfNew[x];
+        same = same && o >= 0 && !changed[o];
+        rankColumns[s] += (o < 0) + (diff.mismatch[x] > 0);
+        likelyRankColumns[s] += (o < 0) + (diff.mismatch[x] > 1);
       }
-      eligible[s] = Index(backup.rows[s].size()) == node.nrows() && backup.ncols[s] == node.ncols &&
-                    changedColumns[s] == 0;
-      changedColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);  // merged away
+      eligible[s] = Index(backup.rows[s].size()) == node.nrows() && backup.ncols[s] == node.ncols && same;
+      rankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);  // merged away
+      likelyRankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);
     }
+    for (StorageIndex x : mismatched) diff.mismatch[x] = 0;
     const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
-    const double planned = topUpdatePlan(m_factor, dirty, eligible, changedColumns, m_removedPermuted.data(), force,
-                                         bottom, top, boundary, m_workspace);
+    const double planned = topUpdatePlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns,
+                                         m_removedPermuted.data(), force, bottom, top, boundary, m_workspace);
     if (top.empty() || (!force && planned >= dirtyFlops)) {
       top.clear();
       bottom.clear();
