@@ -3,8 +3,9 @@
 // solver; for seams of l vertices (seamPath(), DESIGN §5) it cuts the mesh along every piece of the
 // seam (cutMesh: interior seam vertices get a copy), builds the cut Laplacian Acut ((n+m)^2) and
 // times, in the same run and interleaved per seam, an update followed by one solve with Acut:
-//   - ours insert: UpdatableSupernodalLLT::insertDofs(Acut, origin) + solve (mergeDofs(A, origin),
-//     timed apart, brings the factor back so that every seam starts from the same one);
+//   - ours insert: UpdatableSupernodalLLT::insertDofs(Acut, origin, K) + solve, with K the changed
+//     old dofs that rowadd and Woodbury get too (mergeDofs(A, origin), timed apart, brings the
+//     factor back so that every seam starts from the same one);
 //   - ours remove: removeDofs(seam) + solveDirichlet on the uncut factor, the same seam (then
 //     restoreDofs): the issue asks for insertDofs <= 1.5x removeDofs;
 //   - CHOLMOD analysis + factorization of Acut (permutation: the uncut one with each copy right after
@@ -397,7 +398,7 @@ private:
     case Kind::OursInsert:
     {
       bench::Stopwatch watch;
-      m_ours.insertDofs(cut.Acut, cut.origin);
+      m_ours.insertDofs(cut.Acut, cut.origin, cut.changed);
       s.callMs = watch.ms();
       const bool inserted = m_ours.info() == Eigen::Success;
       if (inserted) s.x = m_ours.solve(cut.b);
@@ -631,7 +632,8 @@ private:
                 worstName.empty() ? "-" : worstName.c_str(), kRelativeTolerance);
     std::printf(
         "  columns: # seams, pcs = most pieces a seam was split into, m = new dofs (copies), |K| = changed old + new dofs;\n"
-        "  ours ins = insertDofs(Acut, origin) + solve; ours rem = removeDofs(seam) + solveDirichlet on the uncut factor;\n"
+        "  ours ins = insertDofs(Acut, origin, K_old) + solve (K_old: the changed old dofs, as rowadd and SMW get them);\n"
+        "  ours rem = removeDofs(seam) + solveDirichlet on the uncut factor;\n"
         "  CHM cut = cholmod_analyze_p + cholmod_factorize of Acut + solve; rowadd = cholmod_rowdel of the changed old dofs +\n"
         "  cholmod_rowadd of changed and new dofs on a simplicial LDL' factor with identity placeholders + solve; SMW = Woodbury\n"
         "  on blkdiag(A, I_m) with CHOLMOD's factor of A (capacity matrix |K| x |K|) + solve. Not in the times: merge =\n"

@@ -196,7 +196,19 @@ int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route,
       }
       splits.push_back(Split{G, {}});
       splits.back().origin = G.split(origins, g, pureCuts);
-      llt.insertDofs(toInput<Cfg>(G.template matrix<FullMatrix>()), splits.back().origin);
+      const FullMatrix cut = G.template matrix<FullMatrix>();
+      if (g() % 2) {
+        llt.insertDofs(toInput<Cfg>(cut), splits.back().origin);
+      } else {  // told the changed old dofs: those whose column differs (as a cut tool knows them)
+        typedef Eigen::Matrix<typename Cfg::Scalar, Eigen::Dynamic, Eigen::Dynamic> DenseMatrix;
+        const DenseMatrix before = DenseMatrix(splits.back().before.template matrix<FullMatrix>()), after = DenseMatrix(cut);
+        const Index nb = before.rows();
+        std::vector<int> changed;
+        for (Index j = 0; j < nb; ++j)
+          if (before.col(j) != after.col(j).head(nb) || !after.col(j).tail(after.rows() - nb).isZero(0))
+            changed.push_back(int(j));
+        llt.insertDofs(toInput<Cfg>(cut), splits.back().origin, changed);
+      }
       REQUIRE(llt.info() == Eigen::Success);
       CHECK(llt.lastUpdate().changedColumns >= Index(origins.size()));
       removed.resize(G.n, 0);
@@ -495,6 +507,21 @@ TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was",
     std::vector<int> bad = origin;
     bad[5] = 6;
     llt.insertDofs(toInput<Cfg>(Acut), bad);
+    CHECK(llt.info() == Eigen::InvalidInput);
+    unchanged();
+  }
+  SUBCASE("a changed-dof list out of range or repeated, or an entry outside the pattern with a list") {
+    for (const std::vector<int>& bad : {std::vector<int>{10, int(n)}, std::vector<int>{-1}, std::vector<int>{10, 10}}) {
+      llt.insertDofs(toInput<Cfg>(Acut), origin, bad);
+      CHECK(llt.info() == Eigen::InvalidInput);
+    }
+    FullMatrix bad = Acut;
+    bad.coeffRef(n - 1, n) = Scalar(-0.01);  // (n - 1: not a neighbour of dof 10, the copy n's origin)
+    bad.coeffRef(n, n - 1) = Scalar(-0.01);
+    bad.makeCompressed();
+    // (listed, so read: the list promises that no other old dof's row or column changed, and the
+    // outer vectors of the others are not read)
+    llt.insertDofs(toInput<Cfg>(bad), origin, std::vector<int>{int(n - 1)});
     CHECK(llt.info() == Eigen::InvalidInput);
     unchanged();
   }

@@ -64,8 +64,6 @@ struct InputDiff {
   std::vector<StorageIndex> position;    ///< scratch by new permuted row, all -1 between uses
   InputStore<Scalar, StorageIndex> spare;  ///< rebuilt: the previous store (the revert)
   TransposedPattern<StorageIndex> spareTransposed;  ///< rebuilt: the previous transposed pattern (the revert)
-  std::vector<StorageIndex> targets, list;       ///< scratch: the dofs whose transposed lists are rewritten
-  std::vector<std::pair<StorageIndex, StorageIndex> > pairs;  ///< scratch: entries between changed dofs
   std::vector<char> mismatch;  ///< scratch by new dof, zero between uses (gluingMismatches())
   std::vector<StorageIndex> mismatchList;  ///< the dofs where the cut matrix does not glue back
 
@@ -115,7 +113,7 @@ struct InputDiff {
   Index bytes() const {
     return Index(changed.capacity() + mismatch.capacity() + (stamp.capacity() + fresh.capacity()) * sizeof(Index) +
                  (posMap.capacity() + freshOuter.capacity() + position.capacity() + changedList.capacity() +
-                  targets.capacity() + list.capacity() + mismatchList.capacity() + 2 * pairs.capacity()) *
+                  mismatchList.capacity()) *
                      sizeof(StorageIndex) +
                  spare.bytes() + spareTransposed.bytes() + rewrites.capacity() * sizeof(Rewrite));
   }
@@ -126,11 +124,14 @@ struct InputDiff {
   * one (-1 for a copy). Only the UpLo triangle counts. Leaves the new matrix in \a store (in place
   * when the numbering of the kept dofs does not change, else rebuilt; d.revert() undoes it) and
   * fills \a d (changed, posMap, fresh). \a allowed(x, y) is asked about each fresh off-diagonal
-  * entry (new numbering); a false answer stops the comparison with false and the store unchanged. */
+  * entry (new numbering); a false answer stops the comparison with false and the store unchanged.
+  * \a only (sorted, new numbering; null: all): when the store is rewritten in place, the only
+  * outer vectors that may differ; the others are taken as equal without being read. */
 template <int UpLo, bool RowMajor, typename Scalar, typename StorageIndex, typename Allowed>
 bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* outer, const StorageIndex* inner,
                const Scalar* values, Index total, const std::vector<StorageIndex>& oldOfNew,
-               const std::vector<StorageIndex>& newOfOld, InputDiff<Scalar, StorageIndex>& d, Allowed&& allowed) {
+               const std::vector<StorageIndex>& newOfOld, InputDiff<Scalar, StorageIndex>& d, Allowed&& allowed,
+               const std::vector<StorageIndex>* only = nullptr) {
   const Index n = store.outerSize();
   d.changed.assign(n, 0);
   d.changedList.clear();
@@ -162,7 +163,10 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
   out.begin.resize((std::max)(n, total));
   out.end.resize((std::max)(n, total));
   auto kept = [](Index o, Index i) { return inKeptTriangle<UpLo, RowMajor>(o, i); };
-  for (Index x = 0; x < total; ++x) {
+  const bool subset = only && d.inPlace;
+  const Index count = subset ? Index(only->size()) : total;
+  for (Index k = 0; k < count; ++k) {
+    const Index x = subset ? Index((*only)[k]) : k;
     const Index ox = oldOfNew[x];
     const Index nb = outer[x], ne = outer[x + 1];
     const Index ob = ox >= 0 ? store.begin[ox] : 0, oe = ox >= 0 ? store.end[ox] : 0;

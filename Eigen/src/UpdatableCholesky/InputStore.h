@@ -17,6 +17,8 @@
 #ifndef EIGEN_UPDATABLE_CHOLESKY_INPUT_STORE_H
 #define EIGEN_UPDATABLE_CHOLESKY_INPUT_STORE_H
 
+#include <algorithm>
+#include <utility>
 #include <vector>
 
 namespace Eigen {
@@ -131,6 +133,8 @@ struct TransposedPattern {
   };
   std::vector<Rewrite> rewrites;
   Index oldPool = 0, oldSize = 0, oldLive = 0;  ///< the extent before beginRewrites()
+  std::vector<StorageIndex> targets, list;      ///< scratch of followInPlaceRewrite()
+  std::vector<std::pair<StorageIndex, StorageIndex> > pairs;  ///< scratch of followInPlaceRewrite()
 
   Index size() const { return Index(begin.size()); }
   /** True when the pool holds more garbage than live entries. */
@@ -191,6 +195,40 @@ struct TransposedPattern {
     pool.insert(pool.end(), list, list + count);
     end[y] = Index(pool.size());
   }
+  /** Follows a rewrite of \a store in place, where the dofs below min(\a previous, new size)
+    * kept their numbers (an insertion appends dofs, a merge of trailing dofs drops them): the
+    * dofs in \a changedList (flagged in \a changed, by previous dof) that stay, and the new ones,
+    * get their lists anew. Each keeps its neighbours that did not change and gets the changed
+    * ones from the new store; every other list stays as it is. revert() undoes it. */
+  template <typename Scalar>
+  void followInPlaceRewrite(const InputStore<Scalar, StorageIndex>& store, const std::vector<StorageIndex>& changedList,
+                            const std::vector<char>& changed, Index previous) {
+    const Index total = store.outerSize();
+    auto isChanged = [&](Index x) { return x >= previous || changed[x]; };
+    targets.clear();
+    pairs.clear();
+    for (StorageIndex o : changedList)
+      if (o < total) targets.push_back(o);
+    for (Index x = previous; x < total; ++x) targets.push_back(StorageIndex(x));
+    for (StorageIndex x : targets)  // (y, x): the outer vector of x holds y, both changed or new
+      for (Index p = store.begin[x]; p < store.end[x]; ++p) {
+        const StorageIndex y = store.inner[p];
+        if (y != x && isChanged(y)) pairs.emplace_back(y, x);
+      }
+    std::sort(targets.begin(), targets.end());
+    std::sort(pairs.begin(), pairs.end());
+    beginRewrites(total);
+    auto e = pairs.begin();
+    for (StorageIndex y : targets) {
+      list.clear();
+      if (y < previous)  // its unchanged neighbours stay
+        for (Index q = begin[y]; q < end[y]; ++q)
+          if (!changed[pool[q]]) list.push_back(pool[q]);
+      for (; e != pairs.end() && e->first == y; ++e) list.push_back(e->second);
+      rewrite(y, list.data(), Index(list.size()));
+    }
+  }
+
   /** Puts back the lists as they were at beginRewrites(). */
   void revert() {
     begin.resize(oldSize, 0);
@@ -206,7 +244,8 @@ struct TransposedPattern {
 
   /** Bytes held. */
   Index bytes() const {
-    return Index((begin.capacity() + end.capacity()) * sizeof(Index) + pool.capacity() * sizeof(StorageIndex) +
+    return Index((begin.capacity() + end.capacity()) * sizeof(Index) +
+                 (pool.capacity() + targets.capacity() + list.capacity() + 2 * pairs.capacity()) * sizeof(StorageIndex) +
                  rewrites.capacity() * sizeof(Rewrite));
   }
 };

@@ -215,6 +215,16 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   template <typename Indices>
   UpdatableSupernodalLLT& insertDofs(const MatrixType& matrix, const Indices& origin);
 
+  /** insertDofs() told which old dofs may have changed, as updateColumns() is: besides the
+    * copies and their origins, only the dofs in \a changed may have rows and columns that differ
+    * from the current matrix (a cut tool knows them: the seam's vertices and their neighbours).
+    * Only the outer vectors of \a matrix that can hold such an entry are read (those of these
+    * dofs, of the copies, and of their neighbours), so the call costs what the cut costs, not
+    * what the whole matrix costs. An entry that differs elsewhere is not seen: the factor would
+    * not be that of \a matrix. \a changed out of range or repeated: info() is InvalidInput. */
+  template <typename Indices, typename ChangedIndices>
+  UpdatableSupernodalLLT& insertDofs(const MatrixType& matrix, const Indices& origin, const ChangedIndices& changed);
+
   /** Merges dofs into others, the reverse of insertDofs() (a cut undone): the merged dofs leave
     * the numbering, the kept ones are renumbered in their order.
     *
@@ -399,6 +409,9 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     internal::updatable_cholesky::DofRelabeling<StorageIndex> relabel;
     bool merging = false;
     bool layoutReady = false;  ///< relabel and newPerm are built (buildInsertionLayout())
+    bool compareAll = true;    ///< false: the input diff reads only the outer vectors in compared
+    std::vector<StorageIndex> compared;  ///< sorted, new numbering (insertDofs() with a changed list)
+    std::vector<char> listed;            ///< scratch by dof, zero between calls
     /** Bytes held. */
     Index bytes() const {
       return Index((oldOfNew.capacity() + newOfOld.capacity() + preStart.capacity() + preList.capacity() +
@@ -412,6 +425,9 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   DofChange m_insertChange, m_mergeChange;
   internal::updatable_cholesky::FactorStructureBackup<Scalar, StorageIndex> m_structureBackup;  ///< their revert
   void replaceDofs(const MatrixType& matrix, DofChange& change);
+  /** insertDofs() with the outer vectors to compare set in m_insertChange (compareAll, compared). */
+  template <typename Indices>
+  UpdatableSupernodalLLT& insertCopies(const MatrixType& matrix, const Indices& origin);
   /** The relabeling of the permuted columns and the new permutation of an insertion (each copy
     * right after its origin), from the copies counted in \a change. */
   void buildInsertionLayout(DofChange& change);
@@ -740,6 +756,14 @@ template <typename MatrixType_, int UpLo_, typename Ordering_>
 template <typename Indices>
 UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::insertDofs(
     const MatrixType& a, const Indices& origin) {
+  m_insertChange.compareAll = true;
+  return insertCopies(a, origin);
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Indices>
+UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::insertCopies(
+    const MatrixType& a, const Indices& origin) {
   if (!beginUpdate()) return *this;
   const Index n = m_n, total = Index(origin.size());
   bool ok = a.rows() == a.cols() && a.rows() == total && total >= n;
@@ -782,6 +806,48 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   replaceDofs(a, change);
   for (StorageIndex po : originPositions) relabel.copies[po] = change.placed[po] = 0;  // zero again
   return *this;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Indices, typename ChangedIndices>
+UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::insertDofs(
+    const MatrixType& a, const Indices& origin, const ChangedIndices& changed) {
+  if (!beginUpdate()) return *this;
+  const Index n = m_n, total = Index(origin.size());
+  std::vector<StorageIndex> list;
+  const char* why = nullptr;
+  bool ok = internal::updatable_cholesky::checkIndices(changed, n, list, why);
+  for (Index i = n; ok && i < total; ++i) ok = Index(origin[i]) >= 0 && Index(origin[i]) < n;
+  if (!ok) {
+    m_info = InvalidInput;
+    return *this;
+  }
+  // the outer vectors that may hold a changed entry: those of the changed dofs, the origins and
+  // the copies, and those of their neighbours (which hold their entries in the other triangle)
+  DofChange& change = m_insertChange;
+  std::vector<StorageIndex>& compared = change.compared;
+  std::vector<char>& listed = change.listed;
+  compared.clear();
+  listed.resize((std::max)(Index(listed.size()), total), 0);
+  auto add = [&](Index x) {
+    if (listed[x]) return;
+    listed[x] = 1;
+    compared.push_back(StorageIndex(x));
+  };
+  auto addWithNeighbours = [&](Index x) {
+    add(x);
+    for (Index p = m_store.begin[x]; p < m_store.end[x]; ++p) add(m_store.inner[p]);
+    for (Index q = m_transposed.begin[x]; q < m_transposed.end[x]; ++q) add(m_transposed.pool[q]);
+  };
+  for (StorageIndex d : list) addWithNeighbours(d);
+  for (Index i = n; i < total; ++i) {
+    addWithNeighbours(Index(origin[i]));
+    add(i);
+  }
+  for (StorageIndex x : compared) listed[x] = 0;
+  std::sort(compared.begin(), compared.end());
+  change.compareAll = false;
+  return insertCopies(a, origin);
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
@@ -917,7 +983,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   };
   InputDiff<Scalar, StorageIndex>& diff = m_inputDiff;
   if (!diffInput<UpLo_, rowMajor>(m_store, outer, inner, values, total, change.oldOfNew, change.newOfOld, diff,
-                                  foldAllowed)) {  // (the store is as it was)
+                                  foldAllowed, change.compareAll ? nullptr : &change.compared)) {  // (the store is as it was)
     m_info = InvalidInput;
     return;
   }
@@ -985,32 +1051,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   // when its pool holds too much garbage, it is rebuilt (the previous one becomes the spare)
   const bool transposedInPlace = diff.inPlace && !m_transposed.wasteful();
   if (transposedInPlace) {
-    auto isChanged = [&](Index x) { return change.oldOfNew[x] < 0 || changed[change.oldOfNew[x]]; };
-    auto& targets = diff.targets;  // changed dofs that stay and copies, new numbering (the same as the current one)
-    auto& pairs = diff.pairs;      // (y, x): the outer vector of x holds y, both changed or new
-    targets.clear();
-    pairs.clear();
-    for (StorageIndex o : diff.changedList)
-      if (change.newOfOld[o] >= 0) targets.push_back(change.newOfOld[o]);
-    for (Index x = n; x < total; ++x) targets.push_back(StorageIndex(x));
-    for (StorageIndex x : targets)
-      for (Index p = m_store.begin[x]; p < m_store.end[x]; ++p) {
-        const StorageIndex y = m_store.inner[p];
-        if (y != x && isChanged(y)) pairs.emplace_back(y, x);
-      }
-    std::sort(targets.begin(), targets.end());
-    std::sort(pairs.begin(), pairs.end());
-    m_transposed.beginRewrites(total);
-    auto& list = diff.list;
-    auto e = pairs.begin();
-    for (StorageIndex y : targets) {
-      list.clear();
-      if (y < n)  // its unchanged neighbours stay (merged dofs are changed)
-        for (Index q = m_transposed.begin[y]; q < m_transposed.end[y]; ++q)
-          if (!changed[m_transposed.pool[q]]) list.push_back(m_transposed.pool[q]);
-      for (; e != pairs.end() && e->first == y; ++e) list.push_back(e->second);
-      m_transposed.rewrite(y, list.data(), Index(list.size()));
-    }
+    m_transposed.followInPlaceRewrite(m_store, diff.changedList, changed, n);
   } else {
     diff.spareTransposed.assign(m_store);
     std::swap(m_transposed, diff.spareTransposed);
