@@ -12,12 +12,17 @@
 //     entries the old matrix did not have are "fresh") and rewritten at the end of the store;
 //     a position map says where each old entry of it went. Otherwise (dofs renumbered, or a
 //     store with too much garbage) the store is rebuilt compactly and every position maps.
+//     Told which outer vectors may differ (insertDofs() with a list of changed dofs), it reads
+//     only those.
+//   - gluingMismatches(): where the cut matrix, its copies added back onto their origins,
+//     differs from the uncut one; it bounds the rank of what the mixed route folds
+//     (LowRankTopUpdate.h).
 //   - remapAssemblyMaps(): a clean supernode keeps its map, or maps its sources through the
 //     position map when it owns an entry that moved; a dirty supernode's map is rebuilt from its
 //     old map (surviving entries, new row positions) plus the fresh entries of its columns.
 //   - the transposed pattern (in the user's numbering, which an insertion keeps): an unchanged
 //     dof keeps its list; a changed one keeps its unchanged neighbours and gets its changed ones
-//     from the new matrix (UpdatableSupernodalLLT::replaceDofs()).
+//     from the new matrix (TransposedPattern::followInPlaceRewrite()).
 // The scratch arrays live in the solver between calls.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_DOF_INSERTION_INPUT_H
