@@ -4,7 +4,7 @@
 // seam (cutMesh: interior seam vertices get a copy), builds the cut Laplacian Acut ((n+m)^2) and
 // times, in the same run and interleaved per seam, an update followed by one solve with Acut:
 //   - ours insert: UpdatableSupernodalLLT::insertDofs(Acut, origin, K) + solve, with K the changed
-//     old dofs that rowadd and Woodbury get too (mergeDofs(A, origin), timed apart, brings the
+//     old dofs that rowadd and Woodbury get too (mergeDofs(A, origin, K), timed apart, brings the
 //     factor back so that every seam starts from the same one);
 //   - ours remove: removeDofs(seam) + solveDirichlet on the uncut factor, the same seam (then
 //     restoreDofs): the issue asks for insertDofs <= 1.5x removeDofs;
@@ -405,7 +405,7 @@ private:
       s.ms = watch.ms();
       if (!inserted) throw std::runtime_error("insertDofs: info() = " + std::to_string(int(m_ours.info())));
       oursStatistics(s);
-      s.extraMs = bench::timeMs([&] { m_ours.mergeDofs(m_A, cut.origin); });
+      s.extraMs = bench::timeMs([&] { m_ours.mergeDofs(m_A, cut.origin, cut.changed); });
       if (m_ours.info() != Eigen::Success) throw std::runtime_error("mergeDofs: info() = " + std::to_string(int(m_ours.info())));
       if (m_ours.rows() != m_n) throw std::runtime_error("mergeDofs left the wrong size");
       break;
@@ -637,7 +637,7 @@ private:
         "  CHM cut = cholmod_analyze_p + cholmod_factorize of Acut + solve; rowadd = cholmod_rowdel of the changed old dofs +\n"
         "  cholmod_rowadd of changed and new dofs on a simplicial LDL' factor with identity placeholders + solve; SMW = Woodbury\n"
         "  on blkdiag(A, I_m) with CHOLMOD's factor of A (capacity matrix |K| x |K|) + solve. Not in the times: merge =\n"
-        "  mergeDofs after ours ins, restore = restoreDofs after ours rem, rowadd su = rowadd's per-seam setup (factor +\n"
+        "  mergeDofs(A, origin, K_old) after ours ins, restore = restoreDofs after ours rem, rowadd su = rowadd's per-seam setup (factor +\n"
         "  conversion), cut mesh = seamPath + cutMesh + Laplacian + the changed set. ins/rem update = insertDofs / removeDofs\n"
         "  call (wall time), +solve = with the solves; flops = update flops / full factorization flops, each by its own count\n"
         "  (ours lastUpdate().flopFraction; CHM cut Common.fl of Acut / of A; rowadd Common.modfl / Common.fl of A; SMW dense\n"

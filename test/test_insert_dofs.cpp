@@ -218,8 +218,21 @@ int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route,
     } else if (op == 2 && !splits.empty()) {  // undo the latest split
       const Split s = splits.back();
       splits.pop_back();
+      const FullMatrix cut = G.template matrix<FullMatrix>();
       G = s.before;
-      llt.mergeDofs(toInput<Cfg>(G.template matrix<FullMatrix>()), s.origin);
+      const FullMatrix merged = G.template matrix<FullMatrix>();
+      if (g() % 2) {
+        llt.mergeDofs(toInput<Cfg>(merged), s.origin);
+      } else {  // told the changed kept dofs: those whose column differs
+        typedef Eigen::Matrix<typename Cfg::Scalar, Eigen::Dynamic, Eigen::Dynamic> DenseMatrix;
+        const DenseMatrix before = DenseMatrix(cut), after = DenseMatrix(merged);
+        const Index nb = after.rows();
+        std::vector<int> changed;
+        for (Index j = 0; j < nb; ++j)
+          if (after.col(j) != before.col(j).head(nb) || !before.col(j).tail(before.rows() - nb).isZero(0))
+            changed.push_back(int(j));
+        llt.mergeDofs(toInput<Cfg>(merged), s.origin, changed);
+      }
       REQUIRE(llt.info() == Eigen::Success);
       removed.resize(G.n);
       ++merges;
@@ -566,6 +579,8 @@ TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was",
     llt.mergeDofs(toInput<Cfg>(A), bad);
     CHECK(llt.info() == Eigen::InvalidInput);
     llt.mergeDofs(toInput<Cfg>(Acut), origin);  // wrong size
+    CHECK(llt.info() == Eigen::InvalidInput);
+    llt.mergeDofs(toInput<Cfg>(A), origin, std::vector<int>{int(Acut.rows())});  // a changed dof out of range
     CHECK(llt.info() == Eigen::InvalidInput);
     checkAgainstFresh<Cfg>(llt, Acut, g);
     llt.mergeDofs(toInput<Cfg>(A), origin);

@@ -238,6 +238,15 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   template <typename Indices>
   UpdatableSupernodalLLT& mergeDofs(const MatrixType& matrix, const Indices& origin);
 
+  /** mergeDofs() told which kept dofs may have changed (current numbering), as insertDofs() with
+    * a changed list: besides the merged dofs and the dofs they merge into, only the dofs in
+    * \a changed may have rows and columns that differ. When the merged dofs are the last ones
+    * (a cut undone), only the outer vectors of \a matrix that can hold such an entry are read.
+    * An entry that differs elsewhere is not seen. \a changed out of range or repeated: info() is
+    * InvalidInput. */
+  template <typename Indices, typename ChangedIndices>
+  UpdatableSupernodalLLT& mergeDofs(const MatrixType& matrix, const Indices& origin, const ChangedIndices& changed);
+
   /** \returns the removed dofs, in the order they were removed. */
   const std::vector<StorageIndex>& removedDofs() const { return m_removedList; }
 
@@ -412,6 +421,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     bool compareAll = true;    ///< false: the input diff reads only the outer vectors in compared
     std::vector<StorageIndex> compared;  ///< sorted, new numbering (insertDofs() with a changed list)
     std::vector<char> listed;            ///< scratch by dof, zero between calls
+    std::vector<StorageIndex> hint;      ///< mergeDofs() with a changed list: the list (current numbering)
     /** Bytes held. */
     Index bytes() const {
       return Index((oldOfNew.capacity() + newOfOld.capacity() + preStart.capacity() + preList.capacity() +
@@ -428,6 +438,9 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   /** insertDofs() with the outer vectors to compare set in m_insertChange (compareAll, compared). */
   template <typename Indices>
   UpdatableSupernodalLLT& insertCopies(const MatrixType& matrix, const Indices& origin);
+  /** mergeDofs() with the outer vectors to compare given by m_mergeChange (compareAll, hint). */
+  template <typename Indices>
+  UpdatableSupernodalLLT& mergeCopies(const MatrixType& matrix, const Indices& origin);
   /** The relabeling of the permuted columns and the new permutation of an insertion (each copy
     * right after its origin), from the copies counted in \a change. */
   void buildInsertionLayout(DofChange& change);
@@ -871,6 +884,27 @@ template <typename MatrixType_, int UpLo_, typename Ordering_>
 template <typename Indices>
 UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::mergeDofs(
     const MatrixType& a, const Indices& origin) {
+  m_mergeChange.compareAll = true;
+  return mergeCopies(a, origin);
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Indices, typename ChangedIndices>
+UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::mergeDofs(
+    const MatrixType& a, const Indices& origin, const ChangedIndices& changed) {
+  const char* why = nullptr;
+  if (!internal::updatable_cholesky::checkIndices(changed, m_n, m_mergeChange.hint, why)) {
+    if (beginUpdate()) m_info = InvalidInput;
+    return *this;
+  }
+  m_mergeChange.compareAll = false;
+  return mergeCopies(a, origin);
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Indices>
+UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::mergeCopies(
+    const MatrixType& a, const Indices& origin) {
   if (!beginUpdate()) return *this;
   const Index n = m_n;
   bool ok = Index(origin.size()) == n;
@@ -914,6 +948,27 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   change.newPerm.resize(total);
   for (Index x = 0; x < total; ++x) change.newPerm[x] = relabel.newPosition[m_P.indices()[change.oldOfNew[x]]];
   change.layoutReady = true;
+  if (!change.compareAll) {  // the outer vectors (new numbering) that may hold a changed entry
+    std::vector<StorageIndex>& compared = change.compared;
+    std::vector<char>& listed = change.listed;
+    compared.clear();
+    listed.resize((std::max)(Index(listed.size()), total), 0);
+    auto add = [&](Index i) {  // (i: a current dof)
+      const StorageIndex x = change.newOfOld[i];
+      if (x < 0 || listed[x]) return;
+      listed[x] = 1;
+      compared.push_back(x);
+    };
+    auto addWithNeighbours = [&](Index i) {
+      add(i);
+      for (Index p = m_store.begin[i]; p < m_store.end[i]; ++p) add(m_store.inner[p]);
+      for (Index q = m_transposed.begin[i]; q < m_transposed.end[i]; ++q) add(m_transposed.pool[q]);
+    };
+    for (StorageIndex d : change.hint) addWithNeighbours(d);
+    for (StorageIndex i : change.touched) addWithNeighbours(i);  // merged dofs and the dofs they merge into
+    for (StorageIndex x : compared) listed[x] = 0;
+    std::sort(compared.begin(), compared.end());
+  }
   replaceDofs(a, change);
   return *this;
 }
