@@ -419,9 +419,9 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     bool merging = false;
     bool layoutReady = false;  ///< relabel and newPerm are built (buildInsertionLayout())
     bool compareAll = true;    ///< false: the input diff reads only the outer vectors in compared
-    std::vector<StorageIndex> compared;  ///< sorted, new numbering (insertDofs() with a changed list)
+    std::vector<StorageIndex> compared;  ///< sorted, new numbering (a changed list was given)
     std::vector<char> listed;            ///< scratch by dof, zero between calls
-    std::vector<StorageIndex> hint;      ///< mergeDofs() with a changed list: the list (current numbering)
+    std::vector<StorageIndex> hint;      ///< the changed list given to insertDofs()/mergeDofs() (current numbering)
     /** Bytes held. */
     Index bytes() const {
       return Index((oldOfNew.capacity() + newOfOld.capacity() + preStart.capacity() + preList.capacity() +
@@ -435,12 +435,15 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   DofChange m_insertChange, m_mergeChange;
   internal::updatable_cholesky::FactorStructureBackup<Scalar, StorageIndex> m_structureBackup;  ///< their revert
   void replaceDofs(const MatrixType& matrix, DofChange& change);
-  /** insertDofs() with the outer vectors to compare set in m_insertChange (compareAll, compared). */
+  /** insertDofs() with the outer vectors to compare given by m_insertChange (compareAll, hint). */
   template <typename Indices>
   UpdatableSupernodalLLT& insertCopies(const MatrixType& matrix, const Indices& origin);
   /** mergeDofs() with the outer vectors to compare given by m_mergeChange (compareAll, hint). */
   template <typename Indices>
   UpdatableSupernodalLLT& mergeCopies(const MatrixType& matrix, const Indices& origin);
+  /** Fills change.compared (the outer vectors the input diff reads) from change.hint, the
+    * origins or merged dofs in change.touched and the new dofs up to \a total. */
+  void collectCompared(DofChange& change, Index total);
   /** The relabeling of the permuted columns and the new permutation of an insertion (each copy
     * right after its origin), from the copies counted in \a change. */
   void buildInsertionLayout(DofChange& change);
@@ -812,6 +815,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     change.touched.push_back(o);
   }
   change.preStart[total] = StorageIndex(total);
+  if (!change.compareAll) collectCompared(change, total);
   change.layoutReady = false;
   if (total > n) buildInsertionLayout(change);  // (without copies, only once the matrix is known to differ)
   std::vector<StorageIndex> originPositions(change.touched.size());
@@ -825,42 +829,39 @@ template <typename MatrixType_, int UpLo_, typename Ordering_>
 template <typename Indices, typename ChangedIndices>
 UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::insertDofs(
     const MatrixType& a, const Indices& origin, const ChangedIndices& changed) {
-  if (!beginUpdate()) return *this;
-  const Index n = m_n, total = Index(origin.size());
-  std::vector<StorageIndex> list;
   const char* why = nullptr;
-  bool ok = internal::updatable_cholesky::checkIndices(changed, n, list, why);
-  for (Index i = n; ok && i < total; ++i) ok = Index(origin[i]) >= 0 && Index(origin[i]) < n;
-  if (!ok) {
-    m_info = InvalidInput;
+  if (!internal::updatable_cholesky::checkIndices(changed, m_n, m_insertChange.hint, why)) {
+    if (beginUpdate()) m_info = InvalidInput;
     return *this;
   }
-  // the outer vectors that may hold a changed entry: those of the changed dofs, the origins and
-  // the copies, and those of their neighbours (which hold their entries in the other triangle)
-  DofChange& change = m_insertChange;
+  m_insertChange.compareAll = false;
+  return insertCopies(a, origin);
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::collectCompared(DofChange& change, Index total) {
+  // the outer vectors (new numbering) that may hold a changed entry: those of the listed dofs,
+  // of the origins or merged dofs and the dofs they merge into, and of their neighbours (which
+  // hold their entries in the other triangle); and the new dofs'
   std::vector<StorageIndex>& compared = change.compared;
   std::vector<char>& listed = change.listed;
   compared.clear();
   listed.resize((std::max)(Index(listed.size()), total), 0);
-  auto add = [&](Index x) {
-    if (listed[x]) return;
+  auto add = [&](Index x) {  // (x: new numbering, -1 for a dof that goes)
+    if (x < 0 || listed[x]) return;
     listed[x] = 1;
     compared.push_back(StorageIndex(x));
   };
-  auto addWithNeighbours = [&](Index x) {
-    add(x);
-    for (Index p = m_store.begin[x]; p < m_store.end[x]; ++p) add(m_store.inner[p]);
-    for (Index q = m_transposed.begin[x]; q < m_transposed.end[x]; ++q) add(m_transposed.pool[q]);
+  auto addWithNeighbours = [&](Index i) {  // (i: a current dof)
+    add(change.newOfOld[i]);
+    for (Index p = m_store.begin[i]; p < m_store.end[i]; ++p) add(change.newOfOld[m_store.inner[p]]);
+    for (Index q = m_transposed.begin[i]; q < m_transposed.end[i]; ++q) add(change.newOfOld[m_transposed.pool[q]]);
   };
-  for (StorageIndex d : list) addWithNeighbours(d);
-  for (Index i = n; i < total; ++i) {
-    addWithNeighbours(Index(origin[i]));
-    add(i);
-  }
+  for (StorageIndex d : change.hint) addWithNeighbours(d);
+  for (StorageIndex i : change.touched) addWithNeighbours(i);
+  for (Index x = m_n; x < total; ++x) add(x);  // the copies of an insertion
   for (StorageIndex x : compared) listed[x] = 0;
   std::sort(compared.begin(), compared.end());
-  change.compareAll = false;
-  return insertCopies(a, origin);
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
@@ -948,27 +949,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   change.newPerm.resize(total);
   for (Index x = 0; x < total; ++x) change.newPerm[x] = relabel.newPosition[m_P.indices()[change.oldOfNew[x]]];
   change.layoutReady = true;
-  if (!change.compareAll) {  // the outer vectors (new numbering) that may hold a changed entry
-    std::vector<StorageIndex>& compared = change.compared;
-    std::vector<char>& listed = change.listed;
-    compared.clear();
-    listed.resize((std::max)(Index(listed.size()), total), 0);
-    auto add = [&](Index i) {  // (i: a current dof)
-      const StorageIndex x = change.newOfOld[i];
-      if (x < 0 || listed[x]) return;
-      listed[x] = 1;
-      compared.push_back(x);
-    };
-    auto addWithNeighbours = [&](Index i) {
-      add(i);
-      for (Index p = m_store.begin[i]; p < m_store.end[i]; ++p) add(m_store.inner[p]);
-      for (Index q = m_transposed.begin[i]; q < m_transposed.end[i]; ++q) add(m_transposed.pool[q]);
-    };
-    for (StorageIndex d : change.hint) addWithNeighbours(d);
-    for (StorageIndex i : change.touched) addWithNeighbours(i);  // merged dofs and the dofs they merge into
-    for (StorageIndex x : compared) listed[x] = 0;
-    std::sort(compared.begin(), compared.end());
-  }
+  if (!change.compareAll) collectCompared(change, total);
   replaceDofs(a, change);
   return *this;
 }
