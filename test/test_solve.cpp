@@ -2,10 +2,13 @@
 // row-major), results written into a block, a column, a Map and the right-hand side itself, a
 // right-hand side that is an expression or a Map, and sparse right-hand sides giving sparse and
 // dense results, each compared with SimplicialLLT's solve of the same system; 1 to 5 right-hand
-// sides on factors of many tiny supernodes and of one huge one (every kernel of the solve).
+// sides on factors of many tiny supernodes and of one huge one (every kernel of the solve); the
+// kept forward substitution (setSolveCaching()): a partly changed right-hand side substitutes only
+// above the change and gives bitwise a full pass's result; solves running concurrently.
 #include "test_checks.h"
 
 #include <memory>
+#include <thread>
 
 using namespace uctest;
 
@@ -115,6 +118,82 @@ TEST_CASE_TEMPLATE("1 to 5 right-hand sides on factors of many tiny supernodes a
         checkSolution<Cfg>(f, Xcols, B);
       }
     }
+  }
+}
+
+TEST_CASE_TEMPLATE("a solve reuses the previous forward substitution where its right-hand side did not change", Cfg,
+                   UC_CONFIGS) {
+  typedef typename Cfg::Dense Dense;
+  std::mt19937 g(91);
+  Eigen::SupernodeRelaxation fundamental;
+  for (int k = 0; k < 3; ++k) fundamental.nrelax[k] = fundamental.zrelax[k] = 0;
+  struct Case {
+    const char* what;
+    Pattern pattern;
+    Eigen::SupernodeRelaxation relaxation;
+  };
+  const Case cases[] = {{"tridiagonal, fundamental supernodes", tridiagonalPattern(97), fundamental},
+                        {"random 300, default relaxation", randomPattern(300, 4, g), Eigen::SupernodeRelaxation()},
+                        {"dense 203: one supernode solved with BLAS", densePattern(203), Eigen::SupernodeRelaxation()}};
+  for (const Case& c : cases) {
+    CAPTURE(c.what);
+    Fixture<Cfg> f(c.pattern, 5);
+    f.llt.setRelaxation(c.relaxation);
+    f.llt.compute(f.input);
+    REQUIRE(f.llt.info() == Eigen::Success);
+    REQUIRE(f.llt.solveCaching());
+    const Index n = f.A.rows();
+    // the row eliminated last lies in a root supernode: changing it redoes that supernode only
+    const Index lastRow = Index(f.llt.permutationPinv().indices()[n - 1]);
+    for (Index k : {Index(1), Index(2), Index(5), Index(9)}) {
+      CAPTURE(k);
+      const bool kept = k <= Index(Cfg::Solver::MaxCachedRightHandSides);
+      Dense B = randomDense<Cfg>(n, k, g);
+      const Dense X0 = f.llt.solve(B);  // (solve() is lazy: evaluated here, once)
+      CHECK(f.llt.lastSolveForwardColumns() == n);
+      checkSolution<Cfg>(f, X0, B);
+      B.row(lastRow) = randomDense<Cfg>(1, k, g);
+      const Dense X = f.llt.solve(B);
+      checkSolution<Cfg>(f, X, B);
+      if (kept && f.llt.supernodeCount() > 1) CHECK(f.llt.lastSolveForwardColumns() < n);
+      if (!kept) CHECK(f.llt.lastSolveForwardColumns() == n);
+      const Dense again = f.llt.solve(B);  // the same right-hand side: nothing to substitute
+      CHECK(f.llt.lastSolveForwardColumns() == (kept ? 0 : n));
+      CHECK(double((again - X).norm()) == 0);
+      const Dense other = f.llt.solve(randomDense<Cfg>(n, k, g));  // a full pass, then B again: a full pass
+      (void)other;
+      const Dense full = f.llt.solve(B);
+      CHECK(f.llt.lastSolveForwardColumns() == n);
+      CHECK(double((full - X).norm()) == 0);
+    }
+    f.llt.setSolveCaching(false);  // plain solves, no memory kept
+    const Dense B = randomDense<Cfg>(n, 2, g);
+    const Dense X1 = f.llt.solve(B), X2 = f.llt.solve(B);
+    CHECK(f.llt.lastSolveForwardColumns() == n);
+    checkSolution<Cfg>(f, X1, B);
+    checkSolution<Cfg>(f, X2, B);
+    f.llt.setSolveCaching(true);
+  }
+}
+
+TEST_CASE_TEMPLATE("solves running concurrently on one object", Cfg, UC_CORE_CONFIGS) {
+  // solve() is const: concurrent calls must all be right (one of them uses the kept substitution)
+  typedef typename Cfg::Dense Dense;
+  std::mt19937 g(17);
+  Fixture<Cfg> f(randomPattern(400, 4, g), 3);
+  const Index n = f.A.rows();
+  const int threads = 4, solves = 12;
+  std::vector<Dense> B(threads * solves), X(threads * solves);
+  for (auto& b : B) b = randomDense<Cfg>(n, 1 + Index(g() % 3), g);
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t)
+    pool.emplace_back([&, t]() {
+      for (int s = 0; s < solves; ++s) X[t * solves + s] = f.llt.solve(B[t * solves + s]);
+    });
+  for (auto& th : pool) th.join();
+  for (int i = 0; i < threads * solves; ++i) {
+    CAPTURE(i);
+    checkSolution<Cfg>(f, X[i], B[i]);
   }
 }
 

@@ -2,7 +2,8 @@
 // updateColumns on mesh Laplacians and random SPD matrices, each step checked against a fresh
 // factorization of the current matrix (A with the removed rows and columns replaced by those of
 // the identity) with the same permutation: equal to rounding for the exact routes, to solving
-// accuracy for the low-rank route. Also Dirichlet solves (B empty, random, all; 1 to 5
+// accuracy for the low-rank route; the solves that reuse the previous forward substitution are
+// bitwise full ones. Also Dirichlet solves (B empty, random, all; 1 to 5
 // right-hand sides), and every error path (bad indices,
 // pattern mismatch, an update that is not positive definite) leaving a usable object.
 #include "test_checks.h"
@@ -73,6 +74,11 @@ void randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route
   llt.setUpdateRoute(route);
   std::vector<char> removed(n, 0);
   std::vector<int> removedList;
+  // the same right-hand side and known values at every step: the solves after an update reuse the
+  // previous forward substitution (setSolveCaching()), which must give bitwise a full one's result
+  const typename Cfg::Dense bFixed = randomDense<Cfg>(n, 2, g), gFixed = randomDense<Cfg>(n, 2, g);
+  const typename Cfg::Dense primed = llt.solve(bFixed);
+  (void)primed;
   for (int step = 0; step < steps; ++step) {
     const int op = int(g() % 4);
     std::vector<int> dofs;
@@ -125,11 +131,20 @@ void randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route
     const bool exact = route == Eigen::UpdateRoute::PartialRefactorization || route == Eigen::UpdateRoute::Refactorization;
     CHECK(diff <= (exact ? exactTolerance<Cfg>() : lowRankTolerance<Cfg>()));
     (void)lowRankStep;
+    // the kept forward substitution: redone on the dirty supernodes only, equal to a full pass
+    const typename Cfg::Dense xKept = llt.solve(bFixed);
+    CHECK(llt.lastSolveForwardColumns() == st.dirtyColumns);
+    const typename Cfg::Dense xDirichletKept = llt.solveDirichlet(bFixed, gFixed);
     // and it solves the current matrix
     typename Cfg::Dense b = randomDense<Cfg>(n, 2, g);
     typename Cfg::Dense x = llt.solve(b);
+    CHECK(llt.lastSolveForwardColumns() == n);  // every row of the right-hand side changed
     const double res = double((current * x - b).norm() / b.norm());
     CHECK(res <= lowRankTolerance<Cfg>());
+    CHECK(double((llt.solveDirichlet(bFixed, gFixed) - xDirichletKept).norm()) == 0);
+    x = llt.solve(b);
+    const typename Cfg::Dense xFull = llt.solve(bFixed);
+    CHECK(double((xFull - xKept).norm()) == 0);
   }
 }
 

@@ -149,6 +149,20 @@ EIGEN_STRONG_INLINE void backwardColumnBlock(Index nr, Index j0, const Scalar* L
   }
 }
 
+/** \internal The column blocks of the forward pass over a small supernode (nr rows, nc columns,
+  * block L) for K right-hand sides held in v (nr×K, leading dimension nr). */
+template <int K, typename Scalar>
+EIGEN_STRONG_INLINE void forwardColumnBlocks(Index nr, Index nc, const Scalar* L, Scalar* v) {
+  Index j = 0;
+  for (; j + 4 <= nc; j += 4) forwardColumnBlock<4, K>(nr, nc, j, L, v);
+  switch (nc - j) {
+    case 3: forwardColumnBlock<3, K>(nr, nc, j, L, v); break;
+    case 2: forwardColumnBlock<2, K>(nr, nc, j, L, v); break;
+    case 1: forwardColumnBlock<1, K>(nr, nc, j, L, v); break;
+    default: break;
+  }
+}
+
 /** \internal Forward pass over one small supernode with K right-hand sides: x_S and zeros for
   * the rows below are laid out contiguously in v, the column blocks run over v, then x_S is
   * written back and the rows below are scattered into X. */
@@ -162,14 +176,7 @@ void forwardSmallSupernode(const Supernode<Scalar, StorageIndex>& node, Scalar* 
     for (Index i = 0; i < nc; ++i) vc[i] = xs[i];
     for (Index i = nc; i < nr; ++i) vc[i] = Scalar(0);
   }
-  Index j = 0;
-  for (; j + 4 <= nc; j += 4) forwardColumnBlock<4, K>(nr, nc, j, L, v);
-  switch (nc - j) {
-    case 3: forwardColumnBlock<3, K>(nr, nc, j, L, v); break;
-    case 2: forwardColumnBlock<2, K>(nr, nc, j, L, v); break;
-    case 1: forwardColumnBlock<1, K>(nr, nc, j, L, v); break;
-    default: break;
-  }
+  forwardColumnBlocks<K>(nr, nc, L, v);
   const StorageIndex* rows = node.rows.data();
   for (int c = 0; c < K; ++c) {
     Scalar* xc = X + c * ldx;

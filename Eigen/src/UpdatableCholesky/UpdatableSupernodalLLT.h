@@ -8,6 +8,7 @@
 #define EIGEN_UPDATABLE_SUPERNODAL_LLT_H
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -60,6 +61,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   typedef TriangularView<const typename CholMatrixType::AdjointReturnType, Eigen::Upper> MatrixU;
   typedef PermutationMatrix<Dynamic, Dynamic, StorageIndex> PermutationType;
   enum { ColsAtCompileTime = MatrixType::ColsAtCompileTime, MaxColsAtCompileTime = MatrixType::MaxColsAtCompileTime };
+  /** Solves with at most this many right-hand sides keep their forward substitution (setSolveCaching()). */
+  enum { MaxCachedRightHandSides = 8 };
 
   EIGEN_STATIC_ASSERT((UpLo_ & (Lower | Upper)) == Lower || (UpLo_ & (Lower | Upper)) == Upper,
                       UPLO_MUST_BE_LOWER_OR_UPPER)
@@ -271,13 +274,29 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
 
   /** \returns what the last update did: route, dirty supernodes and columns, flops, time. */
   const UpdateStatistics& lastUpdate() const { return m_lastUpdate; }
+
+  /** Keep the forward substitution of the last solve (its right-hand side, result and the
+    * update vector of every supernode: about (2n + rows below the supernodes)·k scalars), so
+    * that the next solve with at most MaxCachedRightHandSides columns substitutes again only the
+    * supernodes whose block changed in an update or whose right-hand side rows changed, and
+    * their ancestors: after a small update with the same right-hand side, a solve reads L about
+    * once instead of twice. On by default; off frees the memory. */
+  void setSolveCaching(bool cache) {
+    m_solveCaching = cache;
+    if (!cache) m_solveCache.release();
+  }
+  /** \returns whether solves keep their forward substitution (setSolveCaching()). */
+  bool solveCaching() const { return m_solveCaching; }
+  /** \returns the columns of L that the last solve's forward substitution went through: n for a
+    * full pass, fewer when it reused the previous solve's (setSolveCaching()). */
+  Index lastSolveForwardColumns() const { return m_lastSolveForwardColumns.load(); }
   //@}
 
   /** \returns the bytes held by the factor (values and row indices), its copy of the matrix and
     * its workspace (including the scratch and spare buffers that insertDofs()/mergeDofs() keep
-    * between calls). */
+    * between calls, and the kept forward substitution of setSolveCaching()). */
   Index memoryBytes() const {
-    Index b = m_numeric.workspaceBytes() + m_inputDiff.bytes() + m_store.bytes() + m_transposed.bytes() +
+    Index b = m_numeric.workspaceBytes() + m_solveCache.bytes() + m_inputDiff.bytes() + m_store.bytes() + m_transposed.bytes() +
               m_insertChange.bytes() + m_mergeChange.bytes();
     for (const auto& node : m_factor.nodes)
       b += Index(node.values.size() * sizeof(Scalar) + node.rows.capacity() * sizeof(StorageIndex) +
@@ -326,12 +345,24 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     }
   }
 
-  /** Solves \f$ L L^* x = b \f$ in place for a block already in the permuted numbering. */
+  /** Solves \f$ L L^* x = b \f$ in place for a block already in the permuted numbering. With
+    * solve caching on and at most MaxCachedRightHandSides columns, the forward substitution
+    * reuses the previous solve's where neither the factor nor the right-hand side changed
+    * (internal::updatable_cholesky::ForwardSolveCache); a solve running concurrently with
+    * another on the same object does a plain one. */
   void solveInPlacePermuted(Matrix<Scalar, Dynamic, Dynamic>& x) const {
     const Index k = x.cols();
     if (m_n == 0 || k == 0) return;
-    std::vector<Scalar> work(m_factor.maxRows() * k + 1);
-    internal::updatable_cholesky::forwardSolve(m_factor, x.data(), x.rows(), k, work.data());
+    const bool cached = m_solveCaching && k <= MaxCachedRightHandSides && !m_solveCacheBusy.exchange(true);
+    std::vector<Scalar> work(m_factor.maxRows() * k * (cached ? 2 : 1) + 1);
+    if (cached) {
+      m_solveCache.forward(m_factor, x.data(), x.rows(), k, work.data());
+      m_lastSolveForwardColumns.store(m_solveCache.substitutedColumns());
+      m_solveCacheBusy.store(false);
+    } else {
+      internal::updatable_cholesky::forwardSolve(m_factor, x.data(), x.rows(), k, work.data());
+      m_lastSolveForwardColumns.store(m_n);
+    }
     internal::updatable_cholesky::backwardSolve(m_factor, x.data(), x.rows(), k, work.data());
   }
 
@@ -371,6 +402,10 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   int m_threads;
   mutable CholMatrixType m_sparseL;
   mutable bool m_sparseLIsValid;
+  mutable internal::updatable_cholesky::ForwardSolveCache<Scalar, StorageIndex> m_solveCache;
+  mutable std::atomic<bool> m_solveCacheBusy{false};  ///< a solve is using m_solveCache
+  mutable std::atomic<Index> m_lastSolveForwardColumns{0};
+  bool m_solveCaching = true;
   // state of in-place updates
   internal::updatable_cholesky::TransposedPattern<StorageIndex> m_transposed;  ///< the store's pattern, by inner index
   std::vector<char> m_removedPermuted, m_removedOriginal;       ///< removed flags, both numberings
@@ -465,6 +500,10 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     st.flops = flops;
     st.flopFraction = m_totalFlops > 0 ? st.flops / m_totalFlops : 0;
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (all)
+      m_solveCache.invalidate();
+    else
+      m_solveCache.markChanged(dirty);
   }
   template <typename Revert>
   void applyUpdate(const std::vector<StorageIndex>& permutedColumns, bool isRemoval, Revert&& revert);
@@ -478,6 +517,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   m_analysisIsOk = false;
   m_factorizationIsOk = false;
   m_sparseLIsValid = false;
+  m_solveCache.release();
   m_failedColumn = -1;
   if (a.rows() != a.cols()) {
     m_info = InvalidInput;
@@ -559,6 +599,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::factorize(const Matr
   m_isInitialized = true;
   m_factorizationIsOk = false;
   m_sparseLIsValid = false;
+  m_solveCache.invalidate();
   m_failedColumn = -1;
   if (!m_analysisIsOk) {
     m_info = InvalidInput;
@@ -662,6 +703,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
       m_failedColumn = m_Pinv.indices()[bad];
       revert();
       m_factorizationIsOk = m_numeric.factorize(m_factor, numericInput(), threadCount()) < 0;
+      m_solveCache.invalidate();
       m_info = NumericalIssue;
     }
     recordUpdate(route, Index(permutedColumns.size()), dirty, flops, start);
@@ -998,6 +1040,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   using namespace internal::updatable_cholesky;
   const auto start = std::chrono::steady_clock::now();
   m_sparseLIsValid = false;
+  m_solveCache.invalidate();  // (the supernodes and the numbering change)
   MatrixType copy;
   const MatrixType* pa = compressedInput(a, copy);
   const Index n = m_n, total = pa->rows();
