@@ -1,6 +1,9 @@
 // Timing: a monotonic stopwatch, a sample set with median/min/max, and interleaved repeated runs of
 // several methods with the median run of each, for benchmarks that report medians over repetitions
-// (the machines are noisy; a median ignores the odd slow run).
+// (the machines are noisy; a median ignores the odd slow run). Every run starts with cold caches
+// (evictCaches()): the last-level cache here holds a whole factor, so without it a method would be
+// timed on whatever the method before it left in the cache, and the interleaving's fixed order gives
+// every method the same predecessor each round.
 
 #ifndef UPDATABLE_CHOLESKY_BENCH_TIMING_H
 #define UPDATABLE_CHOLESKY_BENCH_TIMING_H
@@ -14,7 +17,33 @@
 #include <limits>
 #include <vector>
 
+#include <unistd.h>
+
 namespace bench {
+
+/** Writes and reads a buffer of twice the last-level cache (at least 64 MiB, at most 1 GiB), so
+    that whatever a method timed next touches comes from memory, as after any other work. */
+inline void evictCaches()
+{
+  static std::vector<long> buffer;
+  if (buffer.empty())
+  {
+    long bytes = 0;
+#ifdef _SC_LEVEL3_CACHE_SIZE
+    bytes = sysconf(_SC_LEVEL3_CACHE_SIZE);
+#endif
+    bytes = std::min(std::max(2 * bytes, 64L << 20), 1L << 30);
+    buffer.assign(std::size_t(bytes) / sizeof(long), 0);
+  }
+  static volatile long sink = 0;
+  long sum = 0;
+  for (std::size_t i = 0; i < buffer.size(); i += 8)  // one write and one read per cache line
+  {
+    buffer[i] += 1;
+    sum += buffer[i];
+  }
+  sink = sink + sum;
+}
 
 /** Measures wall-clock time with std::chrono::steady_clock. */
 class Stopwatch
@@ -72,8 +101,25 @@ private:
   std::vector<double> m_values;
 };
 
+/** Times, with cold caches, one solve of \a b by an UpdatableSupernodalLLT \a solver with its
+    forward substitution not kept (setSolveCaching(false): a whole solve) into \a full, and with
+    it kept, the same b solved a second time (the backward pass and the copies only) into
+    \a repeated. Solve caching is on afterwards. */
+template <typename Solver, typename Rhs>
+void timeFullAndRepeatedSolve(Solver& solver, const Rhs& b, Samples& full, Samples& repeated)
+{
+  Rhs x;
+  solver.setSolveCaching(false);
+  evictCaches();
+  full.add(timeMs([&] { x = solver.solve(b); }));
+  solver.setSolveCaching(true);
+  x = solver.solve(b);
+  evictCaches();
+  repeated.add(timeMs([&] { x = solver.solve(b); }));
+}
+
 /** Runs \a count methods on one input \a repeats times, interleaved (round r runs every method
-    once, starting at method \a rotation), through runOne(k), which returns a Sample (with `ok`,
+    once, starting at method \a rotation, each after evictCaches()), through runOne(k), which returns a Sample (with `ok`,
     `message` and `ms`) or throws. \returns per method the run of median time among those that
     succeeded (the upper median for an even count), or its first run when none did. */
 template <typename Sample, typename RunOne>
@@ -85,6 +131,7 @@ std::vector<Sample> interleavedMedianRuns(std::size_t count, int repeats, int ro
     {
       const std::size_t k = (i + std::size_t(rotation)) % count;
       runs[k].emplace_back();
+      evictCaches();
       try
       {
         runs[k].back() = runOne(k);
