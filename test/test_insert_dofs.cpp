@@ -2,7 +2,9 @@
 // matrix grows by copies of existing dofs, as when a mesh is cut), merges (a cut undone),
 // Dirichlet removals and restores and value changes, on weighted graph Laplacians and mesh
 // Laplacians. After every step the factor equals a fresh factorization of the current matrix
-// with the solver's own (extended) permutation, and it solves the current matrix. Bad input
+// with the solver's own (extended) permutation, and it solves the current matrix (the solve right
+// after the update reusing the kept forward substitution on the clean supernodes only, bitwise
+// equal to a full pass). Bad input
 // (wrong sizes, an origin out of range or pointing at a new dof, entries outside the duplicated
 // pattern, a matrix that is not positive definite) leaves the object as it was.
 #include "test_checks.h"
@@ -181,6 +183,23 @@ int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route,
   const bool exactRoute =
       route == Eigen::UpdateRoute::PartialRefactorization || route == Eigen::UpdateRoute::Refactorization;
   const double tolerance = exactRoute ? exactTolerance<Cfg>() : lowRankTolerance<Cfg>();
+  // a right-hand side that stays the same on the dofs that stay (its first n rows): the solve right
+  // after each update reuses the kept forward substitution, renumbered by the cuts and merges
+  typedef typename Cfg::Dense Dense;
+  std::mt19937 gFixed(seed + 100);
+  Dense bFixed = randomDense<Cfg>(G.n, 2, gFixed);
+  auto fixedRhs = [&](Index rows) {
+    while (bFixed.rows() < rows) {
+      const Dense more = randomDense<Cfg>(rows - bFixed.rows(), 2, gFixed);
+      bFixed.conservativeResize(rows, Eigen::NoChange);
+      bFixed.bottomRows(more.rows()) = more;
+    }
+    return Dense(bFixed.topRows(rows));
+  };
+  {
+    const Dense primed = llt.solve(fixedRhs(G.n));
+    (void)primed;
+  }
   for (int step = 0; step < steps; ++step) {
     int op = int(g() % 6);
     if (step + 1 == steps && merges == 0) op = splits.empty() ? 0 : 2;  // every run merges at least once
@@ -264,6 +283,15 @@ int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route,
       REQUIRE(llt.info() == Eigen::Success);
     }
     const Eigen::UpdateStatistics& st = llt.lastUpdate();
+    {  // only the dirty supernodes substituted again, and bitwise what a full pass gives
+      const Dense kept = llt.solve(fixedRhs(G.n));
+      CHECK(llt.lastSolveForwardColumns() == st.dirtyColumns);
+      const Dense other = llt.solve(randomDense<Cfg>(G.n, 2, g));
+      CHECK(llt.lastSolveForwardColumns() == G.n);
+      const Dense full = llt.solve(fixedRhs(G.n));
+      CHECK(double((full - kept).norm()) == 0);
+      (void)other;
+    }
     CHECK(st.flopFraction >= 0);
     if (route != Eigen::UpdateRoute::Mixed)  // (a forced Mixed route may cost more than a refactorization)
       CHECK(st.flopFraction <= 1.0 + 1e-12);
@@ -280,6 +308,8 @@ int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route,
       }
     CHECK(double(r.norm() / (b.norm() + (A.template selfadjointView<Eigen::Lower>() * x).norm())) <=
           100 * tolerance);
+    const Dense primed = llt.solve(fixedRhs(G.n));  // what the next step's solve starts from
+    (void)primed;
   }
   CHECK(inserts > 0);
   CHECK(merges > 0);

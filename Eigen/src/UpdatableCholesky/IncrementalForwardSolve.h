@@ -13,11 +13,16 @@
 // (2n + Σ rows below each supernode)·k scalars for k right-hand sides. A substituted supernode
 // gives bitwise the values of a full pass over the same factor and right-hand side. The backward
 // pass changes every entry of x whenever anything changed, so it is always done in full.
+//
+// insertDofs() and mergeDofs() keep the supernodes and renumber the columns (paper §4.2): the
+// kept values follow the renumbering (relabel()); the clean supernodes keep their blocks, their
+// rows below and so their update vectors, and only the dirty ones are substituted again.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_INCREMENTAL_FORWARD_SOLVE_H
 #define EIGEN_UPDATABLE_CHOLESKY_INCREMENTAL_FORWARD_SOLVE_H
 
 #include <cstring>
+#include <limits>
 #include <vector>
 
 namespace Eigen {
@@ -64,6 +69,46 @@ class ForwardSolveCache {
     for (Index s : supernodes) m_redo[s] = 1;
   }
 
+  /** Follows a change of the numbering that keeps the supernodes (insertDofs(), mergeDofs():
+    * each old permuted column k moves to \a newPosition[k], or leaves when it is -1; \a f has
+    * the new structure). The kept values of the columns that stay move with them; every new
+    * column gets a right-hand side that matches nothing (so it is substituted). A supernode keeps
+    * its update vector when its number of rows below is the same, and is substituted again
+    * otherwise; the caller still reports the supernodes whose blocks changed (markChanged()). */
+  template <typename Positions>
+  void relabel(const Positions& newPosition, const Factor& f) {
+    if (!m_valid) return;
+    const Index ns = f.count(), oldN = m_n, newN = f.n, k = m_k;
+    if (Index(newPosition.size()) != oldN || Index(m_redo.size()) != ns) return invalidate();
+    typedef typename NumTraits<Scalar>::Real Real;
+    m_spareRhs.assign(newN * k, Scalar(std::numeric_limits<Real>::quiet_NaN()));  // (NaN equals nothing)
+    m_spareY.assign(newN * k, Scalar(0));
+    for (Index c = 0; c < k; ++c)
+      for (Index q = 0; q < oldN; ++q) {
+        const Index to = Index(newPosition[q]);
+        if (to < 0) continue;
+        m_spareRhs[to + c * newN] = m_rhs[q + c * oldN];
+        m_spareY[to + c * newN] = m_y[q + c * oldN];
+      }
+    m_rhs.swap(m_spareRhs);
+    m_y.swap(m_spareY);
+    m_spareOffset.resize(ns + 1);
+    m_spareOffset[0] = 0;
+    for (Index s = 0; s < ns; ++s) m_spareOffset[s + 1] = m_spareOffset[s] + f.nodes[s].below() * k;
+    m_spareUpdate.resize(m_spareOffset[ns]);
+    for (Index s = 0; s < ns; ++s) {
+      const Index length = m_spareOffset[s + 1] - m_spareOffset[s];
+      if (length != m_offset[s + 1] - m_offset[s]) {
+        m_redo[s] = 1;
+        continue;
+      }
+      std::copy(m_update.begin() + m_offset[s], m_update.begin() + m_offset[s + 1], m_spareUpdate.begin() + m_spareOffset[s]);
+    }
+    m_update.swap(m_spareUpdate);
+    m_offset.swap(m_spareOffset);
+    m_n = newN;
+  }
+
   /** Frees the memory held (the next forward() does a full pass). */
   void release() {
     m_valid = false;
@@ -71,13 +116,18 @@ class ForwardSolveCache {
     std::vector<Scalar>().swap(m_y);
     std::vector<Scalar>().swap(m_update);
     std::vector<Index>().swap(m_offset);
+    std::vector<Scalar>().swap(m_spareRhs);
+    std::vector<Scalar>().swap(m_spareY);
+    std::vector<Scalar>().swap(m_spareUpdate);
+    std::vector<Index>().swap(m_spareOffset);
     std::vector<char>().swap(m_redo);
   }
 
   /** \returns the bytes held. */
   Index bytes() const {
-    return Index((m_rhs.capacity() + m_y.capacity() + m_update.capacity()) * sizeof(Scalar) +
-                 m_offset.capacity() * sizeof(Index) + m_redo.capacity());
+    return Index((m_rhs.capacity() + m_y.capacity() + m_update.capacity() + m_spareRhs.capacity() +
+                  m_spareY.capacity() + m_spareUpdate.capacity()) * sizeof(Scalar) +
+                 (m_offset.capacity() + m_spareOffset.capacity()) * sizeof(Index) + m_redo.capacity());
   }
 
   /** \returns the columns substituted by the last forward() (all n after a full pass). */
@@ -181,6 +231,8 @@ class ForwardSolveCache {
   std::vector<Scalar> m_update;  ///< each supernode's update vector, below()×k at m_offset[s]
   std::vector<Index> m_offset;
   std::vector<char> m_redo;      ///< supernodes to substitute again (all zero after a pass)
+  std::vector<Scalar> m_spareRhs, m_spareY, m_spareUpdate;  ///< relabel()'s targets, swapped in
+  std::vector<Index> m_spareOffset;
 };
 
 }  // namespace updatable_cholesky

@@ -1040,7 +1040,6 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   using namespace internal::updatable_cholesky;
   const auto start = std::chrono::steady_clock::now();
   m_sparseLIsValid = false;
-  m_solveCache.invalidate();  // (the supernodes and the numbering change)
   MatrixType copy;
   const MatrixType* pa = compressedInput(a, copy);
   const Index n = m_n, total = pa->rows();
@@ -1299,9 +1298,11 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       m_factorizationIsOk = again < 0;
     }
     m_info = NumericalIssue;
+    m_solveCache.invalidate();
   } else {
     diff.commit(m_store);
     m_info = Success;
+    m_solveCache.relabel(change.relabel.newPosition, m_factor);  // (recordUpdate() marks the dirty supernodes)
   }
   for (Index s : dirty) mark[s] = 0;
   backup.release(m_factor, dirty);  // the previous blocks are not kept past the call
