@@ -21,6 +21,7 @@
 #include <Eigen/MetisSupport>
 #include <unsupported/Eigen/MeshDeformation>
 
+#include "BlasCore.h"
 #include "Timing.h"
 
 #include <cstdio>
@@ -109,6 +110,7 @@ bool startsWith(const std::string& s, const std::string& prefix) { return s.comp
 }  // namespace
 
 int main(int argc, char** argv) {
+  bench::ensureOpenBlasCore(argv);  // (may re-execute with OPENBLAS_CORETYPE: see BlasCore.h)
   std::string meshPath = UC_BENCH_DEFAULT_MESH;
   int barAround = 0, barRings = 0, reps = 5;
   unsigned seed = 1;

@@ -22,6 +22,7 @@
 #include <Eigen/MetisSupport>
 #include <unsupported/Eigen/MeshParameterization>
 
+#include "BlasCore.h"
 #include "FixedOrdering.h"
 #include "Timing.h"
 
@@ -74,6 +75,7 @@ Permutation restrictedOrdering(const Flattening& bff, const std::vector<int>& in
 /** Entry point: see the comment at the top of this file. */
 int main(int argc, char** argv)
 {
+  bench::ensureOpenBlasCore(argv);  // (may re-execute with OPENBLAS_CORETYPE: see BlasCore.h)
   std::string meshPath = UC_BENCH_DEFAULT_MESH;
   int cuts = 7;
   unsigned seed = 1;

@@ -16,6 +16,7 @@
 #include <Eigen/SparseCholesky>
 #include <unsupported/Eigen/MeshTools>
 
+#include "BlasCore.h"
 #include "CholmodPeer.h"
 #include "FixedOrdering.h"
 #include "HeapTracker.h"
@@ -517,6 +518,7 @@ std::string cpuModel()
 /** Entry point: see the usage text at the top of this file. */
 int main(int argc, char** argv)
 {
+  bench::ensureOpenBlasCore(argv);  // (may re-execute with OPENBLAS_CORETYPE: see BlasCore.h)
   Options options;
   if (!parseOptions(argc, argv, options)) return 2;
 
@@ -573,6 +575,7 @@ int main(int argc, char** argv)
               orderingMs);
   std::printf("  machine  %s, %u hardware threads; BLAS %s\n", cpuModel().c_str(), std::thread::hardware_concurrency(),
               openblas_get_config ? openblas_get_config() : "(not OpenBLAS: thread count not controlled)");
+  std::printf("           %s\n", bench::openBlasCoreNote().c_str());
   std::printf("  heap     %s\n", bench::heapTrackingActive() ? "tracked by malloc interposition (usable sizes, all threads)"
                                                             : "NOT tracked (allocator interposition inactive)");
   std::printf("  runs     per thread count: one untimed warm-up run of each solver, then %d timed repetitions,\n"

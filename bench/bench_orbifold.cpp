@@ -24,6 +24,7 @@
 #include <Eigen/SparseLU>
 #include <unsupported/Eigen/MeshParameterization>
 
+#include "BlasCore.h"
 #include "Timing.h"
 
 #include <cstdio>
@@ -149,6 +150,7 @@ SpMat kktMatrix(const Orbifold& orbifold)
 
 int main(int argc, char** argv)
 {
+  bench::ensureOpenBlasCore(argv);  // (may re-execute with OPENBLAS_CORETYPE: see BlasCore.h)
   Options o;
   if (!parse(argc, argv, o))
   {

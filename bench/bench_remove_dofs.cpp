@@ -24,6 +24,7 @@
 #include <Eigen/MetisSupport>
 #include <unsupported/Eigen/MeshTools>
 
+#include "BlasCore.h"
 #include "BenchReport.h"
 #include "SeamBenchOptions.h"
 #include "CholmodPeer.h"
@@ -725,6 +726,7 @@ private:
 /** Entry point: see the usage text at the top of this file. */
 int main(int argc, char** argv)
 {
+  bench::ensureOpenBlasCore(argv);  // (may re-execute with OPENBLAS_CORETYPE: see BlasCore.h)
   Options options;
   if (!bench::parseSeamBenchOptions(argc, argv, kNames, options)) return 2;
   if (openblas_set_num_threads) openblas_set_num_threads(options.threads);
@@ -736,8 +738,8 @@ int main(int argc, char** argv)
               kShift, options.seams, options.seed, options.repeats);
   std::printf("  every time is update + Dirichlet solve (A_II x_I = b_I - A_IB g, x_B = g; b, g uniform in [-1,1]), "
               "methods interleaved per seam after one warm-up seam\n");
-  std::printf("  compiled for %s (ours, Eigen; CHOLMOD's BLAS picks its kernels at run time)\n",
-              bench::compiledInstructionSet());
+  std::printf("  compiled for %s (ours, Eigen); %s\n", bench::compiledInstructionSet(),
+              bench::openBlasCoreNote().c_str());
 
   const bool allOk = bench::forEachMesh("bench_remove_dofs", options.grid, options.meshes,
                                          [&](const std::string& name, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
