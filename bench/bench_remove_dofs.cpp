@@ -52,8 +52,8 @@
 // OpenBLAS's thread control; weak, so the benchmark still links against another BLAS.
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
 
-#ifndef UC_BENCH_DEFAULT_MESH
-#define UC_BENCH_DEFAULT_MESH "bunny.off.gz"
+#ifndef UC_BENCH_DEFAULT_MESHES
+#define UC_BENCH_DEFAULT_MESHES "bunny.off.gz"
 #endif
 
 namespace {
@@ -285,7 +285,7 @@ void extractReduced(const SpMat& A, const Permutation& perm, const std::vector<c
 using Options = bench::SeamBenchOptions;
 
 /** This benchmark's names on the shared command line (SeamBenchOptions.h). */
-const bench::SeamBenchNames kNames{"bench_remove_dofs", "remove_dofs", "bench/plot_remove_dofs.sh", UC_BENCH_DEFAULT_MESH};
+const bench::SeamBenchNames kNames{"bench_remove_dofs", "remove_dofs", "bench/plot_remove_dofs.sh", UC_BENCH_DEFAULT_MESHES};
 
 // ---- one mesh -----------------------------------------------------------------------------------
 
