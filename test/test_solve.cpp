@@ -33,6 +33,31 @@ struct Fixture {
   }
 };
 
+/** A pattern factored with a given supernode relaxation. */
+struct RelaxedCase {
+  const char* what;
+  Pattern pattern;
+  Eigen::SupernodeRelaxation relaxation;
+};
+
+/** A relaxation with the same nrelax and zrelax at all three levels (0, 0: fundamental supernodes). */
+inline Eigen::SupernodeRelaxation uniformRelaxation(int nrelax, double zrelax) {
+  Eigen::SupernodeRelaxation r;
+  for (int k = 0; k < 3; ++k) {
+    r.nrelax[k] = nrelax;
+    r.zrelax[k] = zrelax;
+  }
+  return r;
+}
+
+/** The fixture of \a c, refactored with its relaxation. */
+template <typename Cfg>
+void refactorWithRelaxation(Fixture<Cfg>& f, const RelaxedCase& c) {
+  f.llt.setRelaxation(c.relaxation);
+  f.llt.compute(f.input);
+  REQUIRE(f.llt.info() == Eigen::Success);
+}
+
 /** Every column: || A x - r || within the backward-error tolerance, and x agrees with the
   * reference's solution of the same right-hand side. */
 template <typename Cfg, typename DenseX, typename DenseR>
@@ -79,31 +104,18 @@ TEST_CASE_TEMPLATE("1 to 5 right-hand sides on factors of many tiny supernodes a
   // remainder of 4 appears here.
   typedef typename Cfg::Dense Dense;
   std::mt19937 g(73);
-  Eigen::SupernodeRelaxation fundamental, huge;
-  for (int k = 0; k < 3; ++k) {
-    fundamental.nrelax[k] = 0;
-    fundamental.zrelax[k] = 0;
-    huge.nrelax[k] = 1 << 30;
-    huge.zrelax[k] = 1e30;
-  }
-  struct Case {
-    const char* what;
-    Pattern pattern;
-    Eigen::SupernodeRelaxation relaxation;
-  };
-  const Case cases[] = {
+  const Eigen::SupernodeRelaxation fundamental = uniformRelaxation(0, 0), huge = uniformRelaxation(1 << 30, 1e30);
+  const RelaxedCase cases[] = {
       {"tridiagonal, fundamental supernodes (one or two columns each)", tridiagonalPattern(97), fundamental},
       {"random, fundamental supernodes", randomPattern(120, 3, g), fundamental},
       {"dense 101: one supernode solved inline", densePattern(101), Eigen::SupernodeRelaxation()},
       {"dense 203: one supernode solved with BLAS", densePattern(203), Eigen::SupernodeRelaxation()},
       {"random 300, everything amalgamated", randomPattern(300, 4, g), huge},
       {"banded 250, default relaxation", bandedRandomPattern(250, 9, 0.4, g), Eigen::SupernodeRelaxation()}};
-  for (const Case& c : cases) {
+  for (const RelaxedCase& c : cases) {
     CAPTURE(c.what);
     Fixture<Cfg> f(c.pattern, 7);
-    f.llt.setRelaxation(c.relaxation);
-    f.llt.compute(f.input);
-    REQUIRE(f.llt.info() == Eigen::Success);
+    refactorWithRelaxation(f, c);
     const Index n = f.A.rows();
     if (c.relaxation.nrelax[0] == 0 && c.pattern.edges.size() < std::size_t(n)) CHECK(f.llt.supernodeCount() >= n / 2);
     if (c.pattern.edges.size() == std::size_t(n * (n - 1) / 2)) CHECK(f.llt.supernodeCount() == 1);
@@ -125,22 +137,13 @@ TEST_CASE_TEMPLATE("a solve reuses the previous forward substitution where its r
                    UC_CONFIGS) {
   typedef typename Cfg::Dense Dense;
   std::mt19937 g(91);
-  Eigen::SupernodeRelaxation fundamental;
-  for (int k = 0; k < 3; ++k) fundamental.nrelax[k] = fundamental.zrelax[k] = 0;
-  struct Case {
-    const char* what;
-    Pattern pattern;
-    Eigen::SupernodeRelaxation relaxation;
-  };
-  const Case cases[] = {{"tridiagonal, fundamental supernodes", tridiagonalPattern(97), fundamental},
-                        {"random 300, default relaxation", randomPattern(300, 4, g), Eigen::SupernodeRelaxation()},
-                        {"dense 203: one supernode solved with BLAS", densePattern(203), Eigen::SupernodeRelaxation()}};
-  for (const Case& c : cases) {
+  const RelaxedCase cases[] = {{"tridiagonal, fundamental supernodes", tridiagonalPattern(97), uniformRelaxation(0, 0)},
+                               {"random 300, default relaxation", randomPattern(300, 4, g), Eigen::SupernodeRelaxation()},
+                               {"dense 203: one supernode solved with BLAS", densePattern(203), Eigen::SupernodeRelaxation()}};
+  for (const RelaxedCase& c : cases) {
     CAPTURE(c.what);
     Fixture<Cfg> f(c.pattern, 5);
-    f.llt.setRelaxation(c.relaxation);
-    f.llt.compute(f.input);
-    REQUIRE(f.llt.info() == Eigen::Success);
+    refactorWithRelaxation(f, c);
     REQUIRE(f.llt.solveCaching());
     const Index n = f.A.rows();
     // the row eliminated last lies in a root supernode: changing it redoes that supernode only

@@ -92,9 +92,7 @@ class ForwardSolveCache {
       }
     m_rhs.swap(m_spareRhs);
     m_y.swap(m_spareY);
-    m_spareOffset.resize(ns + 1);
-    m_spareOffset[0] = 0;
-    for (Index s = 0; s < ns; ++s) m_spareOffset[s + 1] = m_spareOffset[s] + f.nodes[s].below() * k;
+    updateOffsets(f, k, m_spareOffset);
     m_spareUpdate.resize(m_spareOffset[ns]);
     for (Index s = 0; s < ns; ++s) {
       const Index length = m_spareOffset[s + 1] - m_spareOffset[s];
@@ -147,14 +145,20 @@ class ForwardSolveCache {
   }
 
  private:
+  /** Where each supernode's update vector starts (below()·k scalars each), and the total at [ns]. */
+  static void updateOffsets(const Factor& f, Index k, std::vector<Index>& offset) {
+    const Index ns = f.count();
+    offset.resize(ns + 1);
+    offset[0] = 0;
+    for (Index s = 0; s < ns; ++s) offset[s + 1] = offset[s] + f.nodes[s].below() * k;
+  }
+
   /** Sizes the kept arrays for the factor and k right-hand sides; every supernode to be redone. */
   void reset(const Factor& f, Index k) {
     const Index ns = f.count();
     m_n = f.n;
     m_k = k;
-    m_offset.resize(ns + 1);
-    m_offset[0] = 0;
-    for (Index s = 0; s < ns; ++s) m_offset[s + 1] = m_offset[s] + f.nodes[s].below() * k;
+    updateOffsets(f, k, m_offset);
     m_rhs.resize(m_n * k);
     m_y.resize(m_n * k);
     m_update.resize(m_offset[ns]);

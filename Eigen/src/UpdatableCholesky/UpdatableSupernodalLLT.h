@@ -486,7 +486,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     * back, differs from the uncut one (internal::updatable_cholesky::gluingMismatches()). */
   const std::vector<StorageIndex>& gluingMismatchesOf(const DofChange& change);
   /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty and spent
-    * \a flops (all of a refactorization's, reduced fronts counted on their kept rows). */
+    * \a flops (all of a refactorization's, reduced fronts counted on their kept rows), and tells
+    * the kept forward substitution which blocks were rewritten: every update ends here. */
   void recordUpdate(UpdateRoute route, Index changedColumns, const std::vector<Index>& dirty, double flops,
                     std::chrono::steady_clock::time_point start) {
     UpdateStatistics& st = m_lastUpdate;
