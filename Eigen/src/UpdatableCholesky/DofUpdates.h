@@ -52,6 +52,7 @@ struct UpdateWorkspace {
   std::vector<char> mark;                                   ///< dirty marks
   std::vector<Index> rank, local, first;                    ///< per-supernode ranks, first columns (cost model)
   std::vector<double> cost;                                 ///< per-supernode low-rank flops (cost model)
+  std::vector<Index> foldBound;  ///< 1 + rank bound of a refactored child of a folded supernode (insertions), else 0
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carried;   ///< W passed to the parent
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carriedNegative;  ///< downdate part passed up (insertions)
   void resize(Index supernodes) {
@@ -60,6 +61,7 @@ struct UpdateWorkspace {
     local.assign(supernodes, 0);
     first.assign(supernodes, 0);
     cost.assign(supernodes, 0.0);
+    foldBound.assign(supernodes, 0);
     carried.clear();
     carried.resize(supernodes);
     carriedNegative.clear();

@@ -1,29 +1,34 @@
-// LowRankTopUpdate.h — after a cut or a merge, the top of the dirty tree is updated by signed
-// low-rank folds instead of being refactored (insertDofs/mergeDofs, paper §4.2 / Algorithm 4,
-// with Davis & Hager's up- and downdates on the supernodal factor, DESIGN §3).
+// LowRankTopUpdate.h — after a cut or a merge, dirty supernodes whose own columns did not change
+// are updated by signed low-rank folds instead of being refactored (insertDofs/mergeDofs, paper
+// §4.2 / Algorithm 4, with Davis & Hager's up- and downdates on the supernodal factor, DESIGN §3).
 //
 // A structural change makes the supernodes on the paths from the changed columns to the roots
-// dirty. Near the change they gain or lose rows and columns and are refactored (Algorithm 4).
-// Higher up, a dirty supernode often keeps its rows, its columns and its input: its values
-// change only through the update matrices its refactored children pass up. The change of a
-// child's update matrix, U' − U = L21' L21'^H − L21 L21^H, has a small rank: written in the
-// variables (last copy, differences to it), a cut that glues back to the uncut matrix only adds
-// one row and column per copy (a row addition, Davis & Hager), so U' − U is one-signed of rank
-// at most the copies below; a merge removes them again. Each dof where the cut does not glue
-// back adds one (gluingMismatches()). The change is split into P P^H − N N^H (a sampled range
-// and an eigendecomposition of the small core; eigenvalues at rounding level are dropped) and
-// folded into that top part: first the update P (Givens rotations or blocked LQ,
-// as for removals), then the downdate N (hyperbolic rotations), along the paths to the roots.
-// The cached update matrices of the top get the matching ± corrections, deferred. Each top
-// supernode then costs ~4 · rank · rows · columns instead of its refactorization and its
-// children's extend-adds: the root separators, which every path crosses, are not recomputed for
-// a short seam. Which part is refactored and which is folded is chosen per update by a dynamic
-// program over the dirty tree on flop estimates.
+// dirty. Those that gain columns (copies of their own dofs) or whose input changed are
+// refactored (Algorithm 4). The others keep their columns and input: their values change only
+// through the update matrices their children pass up. Such a supernode may have gained copy
+// rows below; the previous factor extended with identity for the copies has zero rows there, so
+// its previous block and update matrix are kept with zero rows and columns inserted (the
+// extension of the previous matrix by identity placeholders, as in the paper's rowadd setup).
+// The change of a child's update matrix, U' − U = L21' L21'^H − L21 L21^H, has a small rank:
+// written in the variables (last copy, differences to it), a cut that glues back to the uncut
+// matrix only adds one row and column per copy (a row addition, Davis & Hager), so U' − U has
+// rank at most the copies below, plus two per copy row of the child (the unit transform that
+// moves a copy row back onto its origin); a merge removes them again. Each dof where the cut
+// does not glue back adds one (gluingMismatches()). The change is split into P P^H − N N^H (a
+// sampled range and an eigendecomposition of the small core; eigenvalues at rounding level are
+// dropped) and folded: first the update P (Givens rotations or blocked LQ, as for removals),
+// then the downdate N (hyperbolic rotations), along the paths to the roots. The cached update
+// matrices of the folded supernodes get the matching ± corrections, deferred. Each folded
+// supernode costs ~4 · rank · rows · columns instead of its refactorization and its children's
+// extend-adds. The folded supernodes need not be closed under parents: a cut through the root
+// separator refactors the root but still folds the separators below it, whose deferred
+// corrections the root's refactorization applies. Which supernodes are refactored and which
+// are folded is chosen per update by a dynamic program over the dirty tree on flop estimates.
 //
 // In exact arithmetic no pivot of the downdate can vanish when the new matrix is positive
 // definite (each intermediate matrix dominates the final one). A pivot that does is reported,
-// and the caller refactors the top from the caches instead. The factor solves to the accuracy
-// of a fresh one but is not bitwise equal to it.
+// and the caller refactors every dirty supernode from the caches instead. The factor solves to
+// the accuracy of a fresh one but is not bitwise equal to it.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_LOW_RANK_TOP_UPDATE_H
 #define EIGEN_UPDATABLE_CHOLESKY_LOW_RANK_TOP_UPDATE_H
@@ -94,7 +99,7 @@ inline double updateChangeFlops(double m, double rank) {
 
 /** \internal Splits the change D = U' − U of a cached update matrix (m × m, lower triangles,
   * column-major) into P P^H − N N^H with as few columns as its numerical rank, which is at most
-  * \a rankBound (see topUpdatePlan(); a wrong bound is caught by the check below). The range of D is sampled with rankBound + a few random
+  * \a rankBound (see foldPlan(); a wrong bound is caught by the check below). The range of D is sampled with rankBound + a few random
   * vectors (deterministic signs), D is checked to lie in that range, and the small projected
   * matrix is diagonalized; eigenvalues at rounding level are dropped. \returns false when D is
   * not captured (the bound did not hold); \a flops gets the work. */
@@ -160,66 +165,81 @@ bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index r
   return true;
 }
 
-/** \internal Splits the dirty supernodes \a dirty (increasing) of a structural change into a
-  * \a bottom part to refactor and a \a top part (closed under taking parents, every supernode of
-  * it flagged in \a eligible: same rows, columns and input as before) to update by signed folds,
-  * by a dynamic program on flop estimates. \a rankColumns: per supernode, how much its columns
-  * add to the rank of the change of an update matrix above them (read on dirty supernodes only):
-  * one per copy or merged dof and per dof where the cut does not glue back (gluingMismatches()):
-  * the bound the split samples with. \a likelyRankColumns: the same without the dofs whose
-  * mismatch is small (at most sqrt(eps) of its entries), which a change far above mostly drops
-  * (below rounding): the rank the costs are estimated with. With \a force,
-  * the top is as large as allowed. Lists in \a boundary each refactored child c of the top with
-  * the rank bound of its update matrix's change. \returns the estimated
-  * cost of the plan in refactorization flops (fold flops weighted by FoldFlopWeight). */
+/** \internal Chooses, per dirty supernode of a structural change (\a dirty, increasing), whether
+  * it is refactored or folded, by a dynamic program over the dirty tree on flop estimates. A
+  * supernode may be folded when flagged in \a eligible (same columns and input as before; its
+  * rows may have gained copies, which enter its block and update matrix as zero rows: the old
+  * factor extended with identity for the copies). The folded ones need not be closed under
+  * parents: a folded supernode under a refactored one leaves its update-matrix change as a
+  * deferred correction that the parent's refactorization applies.
+  * \a rankColumns: per supernode, how much its columns add to the rank of the change of an
+  * update matrix above them: one per copy or merged dof and per dof where the cut does not glue
+  * back (gluingMismatches()). \a rowRank: what a supernode's copy rows add to the rank of its
+  * own update matrix's change (two per copy row). Both give the bound the split samples with.
+  * \a likelyRankColumns: \a rankColumns without the dofs whose mismatch is small (at most
+  * sqrt(eps) of its entries), which a change far above mostly drops (below rounding): the rank
+  * the costs are estimated with. With \a force, every eligible supernode is folded.
+  * On return \a folded (by supernode, all zero on entry) flags the folded supernodes, \a top
+  * lists them and \a bottom the refactored ones (both increasing), and \a boundary each
+  * refactored supernode whose parent is folded, with the rank bound of its update matrix's
+  * change. \returns the estimated cost of the plan in refactorization flops (fold flops weighted
+  * by FoldFlopWeight). */
 template <typename Scalar, typename StorageIndex>
-double topUpdatePlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& dirty,
-                     const std::vector<char>& eligible, const std::vector<Index>& rankColumns,
-                     const std::vector<Index>& likelyRankColumns,
-                     const char* removed, bool force,
-                     std::vector<Index>& bottom, std::vector<Index>& top,
-                     std::vector<std::pair<Index, Index> >& boundary, UpdateWorkspace<Scalar>& ws) {
+double foldPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& dirty,
+                const std::vector<char>& eligible, const std::vector<Index>& rankColumns,
+                const std::vector<Index>& likelyRankColumns, const std::vector<Index>& rowRank, const char* removed,
+                bool force, std::vector<char>& folded, std::vector<Index>& bottom, std::vector<Index>& top,
+                std::vector<std::pair<Index, Index> >& boundary, UpdateWorkspace<Scalar>& ws) {
   const Index count = Index(dirty.size());
   const double never = std::numeric_limits<double>::infinity();
-  std::vector<double> refactor(count), folded(count), split(count), rankBelow(count), likelyBelow(count),
-      rankIn(count, 0.0), rankOut(count), rankBoundary(count), likelyBoundary(count), childPart(count, 0.0);
+  // per position in dirty: the subtree's cost when this supernode is refactored / folded
+  std::vector<double> refactor(count, 0.0), fold(count, never), split(count), apply(count), rankBelow(count),
+      likelyBelow(count), rankIn(count, 0.0), rankOut(count), rankBoundary(count), likelyBoundary(count),
+      underRefactor(count, 0.0), underFold(count, 0.0);
   std::vector<Index> start(count);
   std::vector<Index>& position = ws.local;  // supernode -> 1 + its position in dirty
   for (Index k = 0; k < count; ++k) position[dirty[k]] = k + 1;
-  for (Index k = 0; k < count; ++k) start[k] = f.nodes[dirty[k]].ncols;
-  for (Index k = 0; k < count; ++k) rankBelow[k] = double(rankColumns[dirty[k]]);
-  for (Index k = 0; k < count; ++k) likelyBelow[k] = double(likelyRankColumns[dirty[k]]);
-  for (Index k = 0; k < count; ++k) refactor[k] = 0;
+  for (Index k = 0; k < count; ++k) {
+    start[k] = f.nodes[dirty[k]].ncols;
+    rankBelow[k] = double(rankColumns[dirty[k]]);
+    likelyBelow[k] = double(likelyRankColumns[dirty[k]]);
+  }
   for (Index k = 0; k < count; ++k) {  // children before parents
     const Index s = dirty[k];
     const auto& node = f.nodes[s];
     const double nr = double(node.nrows()), nc = double(node.ncols), m = double(node.below());
-    refactor[k] += frontFlops(node, removed);
-    rankBoundary[k] = (std::min)(m, rankBelow[k]);
-    likelyBoundary[k] = (std::min)(m, likelyBelow[k]);
+    refactor[k] = frontFlops(node, removed) + underRefactor[k];
+    rankBoundary[k] = (std::min)(m, rankBelow[k] + double(rowRank[s]));
+    likelyBoundary[k] = (std::min)(m, likelyBelow[k] + double(rowRank[s]));
     split[k] = FoldFlopWeight * updateChangeFlops(m, rankBoundary[k]);
+    rankOut[k] = likelyBoundary[k];
     if (eligible[s]) {
-      folded[k] = FoldFlopWeight * foldFlops(rankIn[k], nr, nc, double(start[k])) + childPart[k];
+      fold[k] = FoldFlopWeight * foldFlops(rankIn[k], nr, nc, double(start[k])) + underFold[k];
       rankOut[k] = (std::min)(m, rankIn[k]);
-    } else {
-      folded[k] = never;
-      rankOut[k] = likelyBoundary[k];
     }
+    apply[k] = m * m * rankOut[k];  // the deferred correction, applied by a refactored parent
     const Index p = f.parent[s];
     if (p == -1) continue;
     const Index q = position[p] - 1;
-    refactor[q] += refactor[k];
     rankBelow[q] += rankBelow[k];
     likelyBelow[q] += likelyBelow[k];
     rankIn[q] += (std::min)(rankOut[k], likelyBoundary[k]);
-    childPart[q] += (std::min)(folded[k], refactor[k] + split[k]);
+    underRefactor[q] += (std::min)(refactor[k], fold[k] + apply[k]);
+    underFold[q] += (std::min)(refactor[k] + split[k], fold[k]);
     start[q] = (std::min)(start[q], Index(node.parentPosition[0]));
   }
   std::vector<char> inTop(count, 0);
   for (Index k = count - 1; k >= 0; --k) {  // parents before children
     const Index s = dirty[k], p = f.parent[s];
-    if (!eligible[s] || (p != -1 && !inTop[position[p] - 1])) continue;
-    inTop[k] = force || folded[k] < (p == -1 ? refactor[k] : refactor[k] + split[k]);
+    if (!eligible[s]) continue;
+    if (force) {
+      inTop[k] = 1;
+    } else if (p == -1) {
+      inTop[k] = fold[k] < refactor[k];
+    } else {
+      const bool parentFolded = inTop[position[p] - 1] != 0;
+      inTop[k] = parentFolded ? fold[k] < refactor[k] + split[k] : fold[k] + apply[k] < refactor[k];
+    }
   }
   bottom.clear();
   top.clear();
@@ -228,13 +248,16 @@ double topUpdatePlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std:
   for (Index k = 0; k < count; ++k) {
     const Index s = dirty[k], p = f.parent[s];
     const auto& node = f.nodes[s];
+    const bool parentFolded = p != -1 && inTop[position[p] - 1];
     if (inTop[k]) {
       top.push_back(s);
+      folded[s] = 1;
       total += FoldFlopWeight * foldFlops(rankIn[k], double(node.nrows()), double(node.ncols), double(start[k]));
+      if (p != -1 && !parentFolded) total += apply[k];
     } else {
       bottom.push_back(s);
       total += frontFlops(node, removed);
-      if (p != -1 && inTop[position[p] - 1]) {
+      if (parentFolded) {
         total += split[k];
         boundary.emplace_back(s, Index(rankBoundary[k]));
       }
@@ -244,66 +267,188 @@ double topUpdatePlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std:
   return total;
 }
 
-/** \internal Folds the changes of the update matrices passed up from the refactored part into
-  * the \a top supernodes (increasing): on entry ws.carried[c] and ws.carriedNegative[c] hold
-  * P and N of U'_c − U_c = P P^H − N N^H for every refactored child c of a top supernode
-  * (updateMatrixChange()). Updates, then downdates, each supernode, defers the matching
-  * corrections of its cached update matrix and passes the rest to its parent. \returns false
-  * when a downdate loses a pivot (the top is then partly changed: refactor it). */
+/** \internal Where the \a count previous rows \a oldRows (permuted, before the change, moved by
+  * \a newPosition) of a supernode or of its rows below lie among its new rows \a newRows, which
+  * hold them all (an insertion only adds copy rows; a merge keeps the rows of the supernodes
+  * this is used for). */
+template <typename StorageIndex>
+void previousRowPositions(const StorageIndex* oldRows, Index count, const StorageIndex* newRows,
+                          const std::vector<StorageIndex>& newPosition, std::vector<Index>& at) {
+  at.resize(count);
+  Index q = 0;
+  for (Index k = 0; k < count; ++k) {
+    const StorageIndex r = newPosition[oldRows[k]];
+    eigen_assert(r >= 0 && "a previous row of a folded supernode or of its refactored child was merged away");
+    while (newRows[q] != r) ++q;
+    at[k] = q++;
+  }
+}
+
+/** \internal The previous update matrix \a oldU (lower triangle, at.size() square) written into
+  * \a U (m × m) at the new positions \a at of its rows: the rows and columns of the copies a
+  * supernode gained below are zero, as for the previous matrix extended with identity. */
+template <typename Scalar>
+void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index m, std::vector<Scalar>& U) {
+  const Index oldM = Index(at.size());
+  U.assign(m * m, Scalar(0));
+  for (Index b = 0; b < oldM; ++b)
+    for (Index a = b; a < oldM; ++a) U[at[a] + at[b] * m] = oldU[a + b * oldM];
+}
+
+/** \internal Gives a folded supernode its previous block and update matrix, written into its new
+  * rows: the rows of the copies it gained are zero, as in the factor of the previous matrix
+  * extended with identity for the copies (its columns are the same). Without new rows they are
+  * taken from the backup (\a oldValues, \a oldU: \returns true, they must then be recomputed if
+  * the update is reverted), else copied. */
 template <typename Scalar, typename StorageIndex>
-bool lowRankTopUpdate(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
-                      const std::vector<Index>& top, const char* removed, UpdateWorkspace<Scalar>& ws, double& flops) {
+bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<StorageIndex>& oldRows,
+                       Matrix<Scalar, Dynamic, Dynamic>& oldValues, std::vector<Scalar>& oldU,
+                       const std::vector<StorageIndex>& newPosition, std::vector<Index>& at, std::vector<Scalar>& U) {
+  const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, oldNr = Index(oldRows.size());
+  eigen_assert(oldValues.cols() == nc && oldValues.rows() == oldNr && "a folded supernode keeps its columns");
+  if (oldNr == nr) {
+    node.values.swap(oldValues);
+    U.swap(oldU);
+    return true;
+  }
+  previousRowPositions(oldRows.data(), oldNr, node.rows.data(), newPosition, at);
+  node.values.setZero(nr, nc);
+  for (Index j = 0; j < nc; ++j)
+    for (Index k = 0; k < oldNr; ++k) node.values(at[k], j) = oldValues(k, j);
+  for (Index k = nc; k < oldNr; ++k) at[k - nc] = at[k] - nc;  // (the rows below, from the supernode's first one below)
+  at.resize(oldNr - nc);
+  extendUpdateMatrix(oldU.data(), at, m, U);
+  return false;
+}
+
+/** \internal Folds into the folded supernode \a s the changes of the update matrices passed up
+  * by its children: on entry ws.carried[c] and ws.carriedNegative[c] hold P and N of
+  * U'_c − U_c = P P^H − N N^H for every child c with a change (a refactored child: see
+  * updateMatrixChange(); a folded one: what its fold left). Updates, then downdates, the
+  * supernode; the change left on its rows below is deferred as a correction of its cached
+  * update matrix and, when \a passUp (the parent is folded too), carried to the parent.
+  * \returns false when a downdate loses a pivot (the block is then partly changed). */
+template <typename Scalar, typename StorageIndex>
+bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
+                       Index s, bool passUp, const char* removed, UpdateWorkspace<Scalar>& ws, double& flops) {
   typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
   typedef typename NumTraits<Scalar>::Real RealScalar;
   std::vector<FoldSource> sources[2];
   Dense W[2];
   std::vector<Dense>* carried[2] = {&ws.carried, &ws.carriedNegative};
-  for (Index s : top) {
-    auto& node = f.nodes[s];
-    const Index nr = node.nrows(), m = node.below();
-    for (int sign = 0; sign < 2; ++sign) {  // 0: the update P, 1: the downdate N
-      std::vector<FoldSource>& src = sources[sign];
-      std::vector<Dense>& from = *carried[sign];
-      src.clear();
-      for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c])
-        if (from[c].cols() > 0) src.push_back(FoldSource{f.nodes[c].parentPosition[0], from[c].cols(), c});
-      std::sort(src.begin(), src.end(), [](const FoldSource& a, const FoldSource& b) { return a.start < b.start; });
-      Index rank = 0;
-      for (const FoldSource& x : src) rank += x.count;
-      W[sign].setZero(nr, rank);
-      Index q = 0;
-      for (const FoldSource& x : src) {
-        const Dense& wc = from[x.child];
-        const auto& pos = f.nodes[x.child].parentPosition;
-        for (Index j = 0; j < wc.cols(); ++j, ++q)
-          for (Index k = 0; k < wc.rows(); ++k) W[sign](pos[k], q) = wc(k, j);
-        from[x.child] = Dense();
-      }
+  auto& node = f.nodes[s];
+  const Index nr = node.nrows(), m = node.below();
+  for (int sign = 0; sign < 2; ++sign) {  // 0: the update P, 1: the downdate N
+    std::vector<FoldSource>& src = sources[sign];
+    std::vector<Dense>& from = *carried[sign];
+    for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c])
+      if (from[c].cols() > 0) src.push_back(FoldSource{f.nodes[c].parentPosition[0], from[c].cols(), c});
+    std::sort(src.begin(), src.end(), [](const FoldSource& a, const FoldSource& b) { return a.start < b.start; });
+    Index rank = 0;
+    for (const FoldSource& x : src) rank += x.count;
+    W[sign].setZero(nr, rank);
+    Index q = 0;
+    for (const FoldSource& x : src) {
+      const Dense& wc = from[x.child];
+      const auto& pos = f.nodes[x.child].parentPosition;
+      for (Index j = 0; j < wc.cols(); ++j, ++q)
+        for (Index k = 0; k < wc.rows(); ++k) W[sign](pos[k], q) = wc(k, j);
+      from[x.child] = Dense();
     }
-    flops += foldSources(node, W[0], sources[0], removed);
-    Index first = 0;
-    for (const FoldSource& x : sources[1]) {
-      if (!downdateByHyperbolicRotations(node, W[1], first, x.count, x.start, removed, flops)) {
-        for (Index t : top) ws.carried[t] = ws.carriedNegative[t] = Dense();
-        return false;
-      }
-      first += x.count;
+  }
+  flops += foldSources(node, W[0], sources[0], removed);
+  Index first = 0;
+  for (const FoldSource& x : sources[1]) {
+    if (!downdateByHyperbolicRotations(node, W[1], first, x.count, x.start, removed, flops)) return false;
+    first += x.count;
+  }
+  if (m == 0) return true;
+  for (int sign = 0; sign < 2; ++sign) {  // what is left lives on the rows below
+    if (W[sign].cols() == 0) continue;
+    Dense out = W[sign].bottomRows(m);
+    if (out.cols() > m) {
+      HouseholderQR<Dense> qr(out.adjoint());
+      out = qr.matrixQR().topRows(m).template triangularView<Upper>().adjoint();
+      flops += double(out.cols()) * double(m) * double(m);
     }
-    if (m == 0) continue;
-    for (int sign = 0; sign < 2; ++sign) {  // what is left lives on the rows below
-      if (W[sign].cols() == 0) continue;
-      Dense out = W[sign].bottomRows(m);
-      if (out.cols() > m) {
-        HouseholderQR<Dense> qr(out.adjoint());
-        out = qr.matrixQR().topRows(m).template triangularView<Upper>().adjoint();
-        flops += double(out.cols()) * double(m) * double(m);
-      }
+    if (passUp) {
       Dense correction = out;
       numeric.deferCorrection(f, s, correction, sign == 0 ? RealScalar(1) : RealScalar(-1));
-      if (f.parent[s] != -1) (*carried[sign])[s].swap(out);
+      (*carried[sign])[s].swap(out);
+    } else {
+      numeric.deferCorrection(f, s, out, sign == 0 ? RealScalar(1) : RealScalar(-1));
     }
   }
   return true;
+}
+
+/** \internal The refactored-and-folded update of a structural change (see foldPlan()): walks the
+  * dirty supernodes children first; the refactored ones are recomputed by \a refactor (given a
+  * list, increasing; returns -1 or the permuted column of a bad pivot), in runs, so that a
+  * folded supernode finds its children done; a folded one gets its previous block and update
+  * matrix extended to its new rows (from \a backup, which keeps them), the changes of its
+  * refactored children's update matrices split into signed low-rank parts
+  * (updateMatrixChange(), with the bounds of \a boundary), and the fold (foldIntoSupernode()).
+  * The folded supernodes whose previous block left \a backup are listed in \a taken.
+  * \returns -1 on success, the column of a bad pivot of a refactorization, or -2 when a change
+  * was not captured by its bound or a downdate lost a pivot (the caller then refactors every
+  * dirty supernode: the folded ones are partly changed). \a flops gets the work. */
+template <typename Scalar, typename StorageIndex, typename Backup, typename Refactor>
+Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
+                      const std::vector<Index>& dirty, const std::vector<char>& folded,
+                      const std::vector<std::pair<Index, Index> >& boundary, Backup& backup, std::vector<Index>& taken,
+                      const std::vector<StorageIndex>& newPosition, const char* removed, UpdateWorkspace<Scalar>& ws,
+                      Refactor&& refactor, double& flops) {
+  std::vector<Index>& bound = ws.foldBound;
+  for (const auto& b : boundary) bound[b.first] = b.second + 1;
+  std::vector<Index> run, at;
+  std::vector<Scalar> previousU;
+  Index result = -1;
+  auto flush = [&]() {
+    if (run.empty()) return true;
+    const Index failed = refactor(run);
+    for (Index s : run) flops += frontFlops(f.nodes[s], removed);
+    run.clear();
+    if (failed >= 0) result = failed;
+    return failed < 0;
+  };
+  for (Index s : dirty) {
+    if (!folded[s]) {
+      run.push_back(s);
+      continue;
+    }
+    if (!flush()) break;
+    bool captured = true;
+    for (Index c = f.firstChild[s]; c != -1 && captured; c = f.nextSibling[c]) {
+      if (bound[c] == 0) continue;
+      auto& child = f.nodes[c];
+      const Index m = child.below(), oldNc = backup.ncols[c], oldM = Index(backup.rows[c].size()) - oldNc;
+      const Scalar* oldU = backup.cache[c].data();
+      if (oldM != m) {  // (copy rows gained below)
+        previousRowPositions(backup.rows[c].data() + oldNc, oldM, child.rows.data() + child.ncols, newPosition, at);
+        extendUpdateMatrix(oldU, at, m, previousU);
+        oldU = previousU.data();
+      }
+      captured = updateMatrixChange(numeric.cache()[c].data(), oldU, m, bound[c] - 1, ws.carried[c],
+                                    ws.carriedNegative[c], flops);
+    }
+    if (captured) {
+      auto& node = f.nodes[s];
+      if (takePreviousBlock(node, backup.rows[s], backup.values[s], backup.cache[s], newPosition, at, numeric.cache()[s]))
+        taken.push_back(s);
+      const Index p = f.parent[s];
+      captured = foldIntoSupernode(f, numeric, s, p != -1 && folded[p], removed, ws, flops);
+    }
+    if (!captured) {
+      result = -2;
+      break;
+    }
+  }
+  if (result == -1) flush();
+  for (const auto& b : boundary) bound[b.first] = 0;
+  if (result != -1)
+    for (Index s : dirty) ws.carried[s] = ws.carriedNegative[s] = Matrix<Scalar, Dynamic, Dynamic>();
+  return result;
 }
 
 }  // namespace updatable_cholesky

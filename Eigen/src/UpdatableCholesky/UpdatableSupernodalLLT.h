@@ -1188,16 +1188,20 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
   std::vector<Index> bottom, top;
   std::vector<std::pair<Index, Index> > boundary;
+  std::vector<char> folded;  // by supernode: folded rather than refactored (route Mixed)
+  std::vector<Index> taken;  // folded supernodes whose previous block and update matrix left the backup
   double plannedFlops = dirtyFlops;
   if (m_route != UpdateRoute::PartialRefactorization && m_route != UpdateRoute::Refactorization &&
       m_numeric.hasCachedUpdates() && !dirty.empty()) {
-    // a dirty supernode may be folded when it keeps its rows and columns and no column of it
-    // changed. The change it gets from below has at most the rank of the copies (merged dofs)
-    // below, plus the dofs where the cut matrix does not glue back to the uncut one.
+    // a dirty supernode may be folded when it keeps its columns and no column of it changed;
+    // an insertion may add copy rows to it (zero rows of the previous factor extended with
+    // identity). The change it gets from below has at most the rank of the copies (merged dofs)
+    // below, plus the dofs where the cut matrix does not glue back to the uncut one, plus two
+    // per copy row of the refactored child it comes from.
     const std::vector<StorageIndex>& mismatched = gluingMismatchesOf(change);  // (flags in diff.mismatch)
     const Index ns = m_factor.count();
     std::vector<char> eligible(ns, 0);
-    std::vector<Index> rankColumns(ns, 0), likelyRankColumns(ns, 0);
+    std::vector<Index> rankColumns(ns, 0), likelyRankColumns(ns, 0), rowRank(ns, 0);
     for (Index s : dirty) {
       const auto& node = m_factor.nodes[s];
       bool same = true;
@@ -1207,14 +1211,19 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         rankColumns[s] += (o < 0) + (diff.mismatch[x] > 0);
         likelyRankColumns[s] += (o < 0) + (diff.mismatch[x] > 1);
       }
-      eligible[s] = Index(backup.rows[s].size()) == node.nrows() && backup.ncols[s] == node.ncols && same;
+      if (!change.merging)
+        for (Index k = node.ncols; k < node.nrows(); ++k)
+          rowRank[s] += 2 * (change.oldOfNew[m_Pinv.indices()[node.rows[k]]] < 0);
+      const bool sameRows = !change.merging || Index(backup.rows[s].size()) == node.nrows();
+      eligible[s] = sameRows && backup.ncols[s] == node.ncols && same;
       rankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);  // merged away
       likelyRankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);
     }
     for (StorageIndex x : mismatched) diff.mismatch[x] = 0;
     const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
-    const double planned = topUpdatePlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns,
-                                         m_removedPermuted.data(), force, bottom, top, boundary, m_workspace);
+    folded.assign(ns, 0);
+    const double planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
+                                    m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
     if (top.empty() || (!force && planned >= dirtyFlops)) {
       top.clear();
       bottom.clear();
@@ -1233,30 +1242,20 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     if (route == UpdateRoute::Refactorization) return m_numeric.factorize(m_factor, numericInput(), threadCount());
     if (route == UpdateRoute::PartialRefactorization)
       return m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
-    // Mixed: the top keeps its values and cached update matrix (its structure is the same); they
-    // leave the backup, so a failure recomputes them from the restored caches
-    for (Index s : top) {
-      m_factor.nodes[s].values.swap(backup.values[s]);
-      m_numeric.cache()[s].swap(backup.cache[s]);
-    }
-    const Index failed = m_numeric.refactorize(m_factor, numericInput(), bottom, threadCount());
-    if (failed >= 0) return failed;
-    spentFlops = supernodeFlops(m_factor, bottom, removedFlags);
-    bool captured = true;
-    for (const auto& b : boundary) {  // the refactored children of the top pass up the change of their update matrix
-      const Index s = b.first, m = m_factor.nodes[s].below(), rankBound = b.second;
-      eigen_assert(Index(backup.cache[s].size()) == m * m && "a refactored child of the top keeps its rows below");
-      captured = captured && updateMatrixChange(m_numeric.cache()[s].data(), backup.cache[s].data(), m, rankBound,
-                                                m_workspace.carried[s], m_workspace.carriedNegative[s], spentFlops);
-    }
-    if (captured && lowRankTopUpdate(m_factor, m_numeric, top, m_removedPermuted.data(), m_workspace, spentFlops))
-      return -1;
-    for (Index s : bottom) m_workspace.carried[s] = m_workspace.carriedNegative[s] = typename UpdateWorkspace<Scalar>::Dense();
-    // a change not captured by its rank bound, or a downdate lost a pivot: refactor the top from the caches instead
-    for (Index s : top) m_numeric.discardCorrections(s);
+    // Mixed: the folded supernodes start from their previous blocks and update matrices
+    // (extended to their new rows, or taken from the backup: listed in taken), the others are refactored
+    spentFlops = 0;
+    const Index result = refactorAndFold(
+        m_factor, m_numeric, dirty, folded, boundary, backup, taken, change.relabel.newPosition, m_removedPermuted.data(),
+        m_workspace,
+        [&](const std::vector<Index>& list) { return m_numeric.refactorize(m_factor, numericInput(), list, threadCount()); },
+        spentFlops);
+    if (result != -2) return result;
+    // a change not captured by its rank bound, or a downdate lost a pivot: refactor every dirty supernode instead
+    for (Index s : dirty) m_numeric.discardCorrections(s);
     route = UpdateRoute::PartialRefactorization;
     spentFlops = dirtyFlops;
-    return m_numeric.refactorize(m_factor, numericInput(), top, threadCount());
+    return m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
   };
   const Index bad = run();
   if (bad >= 0) {  // not positive definite: everything goes back as it was
@@ -1285,10 +1284,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     m_totalFlops = oldTotalFlops;
     m_numeric.structureChanged();
     for (Index s : dirty) m_numeric.discardCorrections(s);
-    if (!top.empty() && route != UpdateRoute::Refactorization) {  // the top's previous values left the backup
+    if (!taken.empty() && route != UpdateRoute::Refactorization) {  // their previous values left the backup
       m_numeric.cacheRestored();
-      const Index again = m_numeric.refactorize(m_factor, numericInput(), top, threadCount());
-      eigen_assert(again < 0 && "UpdatableSupernodalLLT: the previous top could not be recomputed");
+      const Index again = m_numeric.refactorize(m_factor, numericInput(), taken, threadCount());
+      eigen_assert(again < 0 && "UpdatableSupernodalLLT: the previous folded supernodes could not be recomputed");
       m_factorizationIsOk = again < 0;
       m_numeric.cacheRestored();
     } else if (route != UpdateRoute::Refactorization) {
