@@ -554,6 +554,57 @@ TEST_CASE_TEMPLATE("insertDofs refactors only the dirty part", Cfg, uctest::d_in
   checkAgainstFresh<Cfg>(llt, changed, g);
 }
 
+TEST_CASE_TEMPLATE("repeated cut/merge cycles reuse their buffers: the same factor, bounded memory", Cfg,
+                   UC_CORE_CONFIGS) {
+  // the blocks and update matrices a call sets aside become the next call's buffers (stale values
+  // that must never be read). Cutting the same seam again gives bitwise the same factor on the
+  // partial refactorization route (it recomputes from the caches); on the mixed route each cycle
+  // folds into the previous factor, so each cycle is checked against a fresh factorization.
+  // The memory held must not grow from cycle to cycle beyond the spare buffers of one call.
+  typedef typename Cfg::FullMatrix FullMatrix;
+  SplitGraph<typename Cfg::Scalar> G = graphOf<Cfg>(meshLaplacian<Cfg>(false));
+  const FullMatrix A0 = G.template matrix<FullMatrix>();
+  std::mt19937 g(17);
+  const std::vector<int> origin = G.split({100, 101, 102, 122, 0}, g);
+  const FullMatrix Acut = G.template matrix<FullMatrix>();
+  for (Eigen::UpdateRoute route : {Eigen::UpdateRoute::PartialRefactorization, Eigen::UpdateRoute::Mixed}) {
+    CAPTURE(int(route));
+    const bool bitwise = route == Eigen::UpdateRoute::PartialRefactorization;
+    typename Cfg::Solver llt;
+    llt.setUpdateCaching(true);
+    llt.compute(toInput<Cfg>(A0));
+    REQUIRE(llt.info() == Eigen::Success);
+    llt.setUpdateRoute(route);
+    FullMatrix firstCut, firstMerged;
+    Index heldAfterFirst = -1, mostHeld = 0;
+    const int cycles = 8;
+    for (int cycle = 0; cycle < cycles; ++cycle) {
+      CAPTURE(cycle);
+      llt.insertDofs(toInput<Cfg>(Acut), origin);
+      REQUIRE(llt.info() == Eigen::Success);
+      const FullMatrix cut = llt.matrixL();
+      if (!bitwise && cycle % 3 == 0) checkAgainstFresh<Cfg>(llt, Acut, g, lowRankTolerance<Cfg>());
+      llt.mergeDofs(toInput<Cfg>(A0), origin);
+      REQUIRE(llt.info() == Eigen::Success);
+      const FullMatrix merged = llt.matrixL();
+      if (!bitwise && cycle % 3 == 0) checkAgainstFresh<Cfg>(llt, A0, g, lowRankTolerance<Cfg>());
+      if (cycle == 0) {
+        firstCut = cut;
+        firstMerged = merged;
+        heldAfterFirst = llt.memoryBytes();
+        checkAgainstFresh<Cfg>(llt, A0, g, lowRankTolerance<Cfg>());
+      } else if (bitwise) {
+        REQUIRE(cut.nonZeros() == firstCut.nonZeros());
+        CHECK(double((cut - firstCut).norm()) == 0.0);
+        CHECK(double((merged - firstMerged).norm()) == 0.0);
+      }
+      if (cycle > 0) mostHeld = (std::max)(mostHeld, llt.memoryBytes());
+    }
+    // a leak of a tenth of the memory per cycle would exceed this after the eight cycles
+    CHECK(double(mostHeld) <= 1.5 * double(heldAfterFirst));
+  }
+}
+
 TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was", Cfg, UC_CORE_CONFIGS) {
   typedef typename Cfg::FullMatrix FullMatrix;
   typedef typename Cfg::Scalar Scalar;

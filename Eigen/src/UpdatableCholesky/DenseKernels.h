@@ -124,20 +124,16 @@ EIGEN_UC_TRSM(std::complex<float>, ctrsm_)
 EIGEN_UC_TRSM(std::complex<double>, ztrsm_)
 #undef EIGEN_UC_TRSM
 
-inline void blasHerk(int n, int k, float alpha, const float* a, int lda, float* c, int ldc) {
-  const float beta = 1;
+inline void blasHerk(int n, int k, float alpha, const float* a, int lda, float* c, int ldc, float beta = 1) {
   ssyrk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
 }
-inline void blasHerk(int n, int k, double alpha, const double* a, int lda, double* c, int ldc) {
-  const double beta = 1;
+inline void blasHerk(int n, int k, double alpha, const double* a, int lda, double* c, int ldc, double beta = 1) {
   dsyrk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
 }
-inline void blasHerk(int n, int k, float alpha, const std::complex<float>* a, int lda, std::complex<float>* c, int ldc) {
-  const float beta = 1;
+inline void blasHerk(int n, int k, float alpha, const std::complex<float>* a, int lda, std::complex<float>* c, int ldc, float beta = 1) {
   cherk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
 }
-inline void blasHerk(int n, int k, double alpha, const std::complex<double>* a, int lda, std::complex<double>* c, int ldc) {
-  const double beta = 1;
+inline void blasHerk(int n, int k, double alpha, const std::complex<double>* a, int lda, std::complex<double>* c, int ldc, double beta = 1) {
   zherk_("L", "N", &n, &k, &alpha, a, &lda, &beta, c, &ldc);
 }
 
@@ -275,11 +271,24 @@ void trsmRightLowerAdjoint(Index m, Index n, const Scalar* l, Index ldl, Scalar*
   L.template triangularView<Lower>().adjoint().template solveInPlace<OnTheRight>(B);
 }
 
-/** \internal Lower triangle of C (n×n) += alpha · A · A^H for the n×k block A. */
+/** \internal Lower triangle of C (n×n) += alpha · A · A^H for the n×k block A; with \a overwrite,
+  * the lower triangle of C := alpha · A · A^H instead (its previous values are not read, so C
+  * needs no zeroing first; the strict upper triangle is left as it is). */
 template <typename Scalar>
 void herkLower(Index n, Index k, typename NumTraits<Scalar>::Real alpha, const Scalar* a, Index lda, Scalar* c,
-               Index ldc) {
-  if (n == 0 || k == 0) return;
+               Index ldc, bool overwrite = false) {
+  if (n == 0) return;
+#ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
+  if constexpr (BlasTraits<Scalar>::Supported) {
+    if (overwrite && k > 0 && n * n * k > 2 * SmallKernelWork) {
+      blasHerk(int(n), int(k), alpha, a, int(lda), c, int(ldc), typename NumTraits<Scalar>::Real(0));
+      return;
+    }
+  }
+#endif
+  if (overwrite)
+    for (Index j = 0; j < n; ++j) std::fill(c + j * ldc + j, c + j * ldc + n, Scalar(0));
+  if (k == 0) return;
   if (n * n * k <= 2 * SmallKernelWork) {
     for (Index j = 0; j < n; ++j) {
       Scalar* cj = c + j * ldc;

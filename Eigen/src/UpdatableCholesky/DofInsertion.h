@@ -23,6 +23,7 @@
 #define EIGEN_UPDATABLE_CHOLESKY_DOF_INSERTION_H
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 namespace Eigen {
@@ -72,17 +73,73 @@ struct FactorStructureBackup {
   std::vector<std::vector<StorageIndex> > rows, parentPosition;  ///< dirty supernodes only
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > values;          ///< dirty supernodes only
   std::vector<std::vector<Scalar> > cache;                        ///< dirty supernodes only
+  /** The previous call's cached update matrices, kept as buffers for this call's dirty supernodes:
+    * a buffer that is already allocated, touched and large enough needs neither the page faults
+    * nor the zeroing of a new one (the update matrices of an insertion and of the merge that
+    * undoes it are the same sizes, swapped). */
+  std::vector<std::vector<Scalar> > spareCache;
+  /** The previous call's blocks of its dirty supernodes, kept likewise for blocks of the same
+    * number of entries (a block's storage is reused only at the same size). */
+  std::vector<Matrix<Scalar, Dynamic, Dynamic> > spareValues;
 
   /** Frees what the call kept of the \a dirty supernodes (and of their children), so that
-    * every per-supernode entry is empty between calls. */
+    * every per-supernode entry is empty between calls; their update matrices become the spare
+    * buffers of the next call (those the call did not use are freed). */
   template <typename Factor>
   void release(const Factor& f, const std::vector<Index>& dirty) {
+    spareCache.clear();
+    spareValues.clear();
     for (Index s : dirty) {
       std::vector<StorageIndex>().swap(rows[s]);
+      if (values[s].size() > 0) spareValues.emplace_back(std::move(values[s]));
       values[s].resize(0, 0);
+      if (!cache[s].empty()) spareCache.emplace_back(std::move(cache[s]));
       std::vector<Scalar>().swap(cache[s]);
       for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) std::vector<StorageIndex>().swap(parentPosition[c]);
     }
+    std::sort(spareCache.begin(), spareCache.end(),
+              [](const std::vector<Scalar>& a, const std::vector<Scalar>& b) { return a.size() < b.size(); });
+    std::sort(spareValues.begin(), spareValues.end(),
+              [](const Matrix<Scalar, Dynamic, Dynamic>& a, const Matrix<Scalar, Dynamic, Dynamic>& b) { return a.size() < b.size(); });
+  }
+
+  /** Gives \a block (empty) the storage of a spare block of exactly rows × cols entries, if there
+    * is one, resized to rows × cols (its values are stale: the caller overwrites them). */
+  void takeSpare(Index rows, Index cols, Matrix<Scalar, Dynamic, Dynamic>& block) {
+    const Index size = rows * cols;
+    if (size == 0) return;
+    auto it = std::lower_bound(spareValues.begin(), spareValues.end(), size,
+                               [](const Matrix<Scalar, Dynamic, Dynamic>& a, Index n) { return a.size() < n; });
+    if (it == spareValues.end() || it->size() != size) return;
+    block.swap(*it);
+    block.resize(rows, cols);  // (the same number of entries: no reallocation)
+    spareValues.erase(it);
+#ifndef NDEBUG
+    block.setConstant(Scalar(std::numeric_limits<typename NumTraits<Scalar>::Real>::quiet_NaN()));
+#endif
+  }
+
+  /** Moves into \a buffer the smallest spare buffer of at least \a size scalars, if there is one
+    * that holds at most twice as many (so that buffers do not grow from call to call; its values
+    * are stale: the caller writes what it reads). */
+  void takeSpare(Index size, std::vector<Scalar>& buffer) {
+    if (size == 0) return;
+    auto it = std::lower_bound(spareCache.begin(), spareCache.end(), size,
+                               [](const std::vector<Scalar>& a, Index n) { return Index(a.size()) < n; });
+    if (it == spareCache.end() || Index(it->capacity()) > 2 * size) return;
+    buffer.swap(*it);
+    spareCache.erase(it);
+#ifndef NDEBUG  // stale values: poisoned, so that a test reading them fails
+    std::fill(buffer.begin(), buffer.end(), Scalar(std::numeric_limits<typename NumTraits<Scalar>::Real>::quiet_NaN()));
+#endif
+  }
+
+  /** Bytes held between calls (the spare buffers). */
+  Index bytes() const {
+    Index b = 0;
+    for (const auto& buffer : spareCache) b += Index(buffer.capacity() * sizeof(Scalar));
+    for (const auto& block : spareValues) b += Index(block.size() * sizeof(Scalar));
+    return b;
   }
 };
 
@@ -127,6 +184,8 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
         if (k < node.ncols) columns += added;
       }
       node.ncols = columns;
+      backup.takeSpare(node.nrows(), node.ncols, node.values);
+      if (Index(cache.size()) == ns) backup.takeSpare(node.below() * node.below(), cache[s]);
     }
     node.firstCol = node.ncols > 0 ? Index(node.rows[0]) : 0;
   }

@@ -81,30 +81,29 @@ class ForwardSolveCache {
     const Index ns = f.count(), oldN = m_n, newN = f.n, k = m_k;
     if (Index(newPosition.size()) != oldN || Index(m_redo.size()) != ns) return invalidate();
     typedef typename NumTraits<Scalar>::Real Real;
-    m_spareRhs.assign(newN * k, Scalar(std::numeric_limits<Real>::quiet_NaN()));  // (NaN equals nothing)
-    m_spareY.assign(newN * k, Scalar(0));
-    for (Index c = 0; c < k; ++c)
-      for (Index q = 0; q < oldN; ++q) {
-        const Index to = Index(newPosition[q]);
-        if (to < 0) continue;
-        m_spareRhs[to + c * newN] = m_rhs[q + c * oldN];
-        m_spareY[to + c * newN] = m_y[q + c * oldN];
-      }
-    m_rhs.swap(m_spareRhs);
-    m_y.swap(m_spareY);
-    updateOffsets(f, k, m_spareOffset);
-    m_spareUpdate.resize(m_spareOffset[ns]);
-    for (Index s = 0; s < ns; ++s) {
-      const Index length = m_spareOffset[s + 1] - m_spareOffset[s];
-      if (length != m_offset[s + 1] - m_offset[s]) {
-        m_redo[s] = 1;
-        continue;
-      }
-      std::copy(m_update.begin() + m_offset[s], m_update.begin() + m_offset[s + 1], m_spareUpdate.begin() + m_spareOffset[s]);
-    }
-    m_update.swap(m_spareUpdate);
-    m_offset.swap(m_spareOffset);
+    if (!moveInPlace(newPosition, newN, m_rhs, Scalar(std::numeric_limits<Real>::quiet_NaN())) ||  // (NaN equals nothing)
+        !moveInPlace(newPosition, newN, m_y, Scalar(0)))
+      return invalidate();
     m_n = newN;
+    // the update vectors: a supernode whose rows below changed is substituted again, in its
+    // region if it fits, else in a new one at the end; the regions are laid out anew once the
+    // abandoned ones hold as much as the live ones
+    Index live = 0;
+    for (Index s = 0; s < ns; ++s) {
+      const Index length = f.nodes[s].below() * k;
+      live += length;
+      if (length == m_length[s]) continue;
+      m_redo[s] = 1;
+      m_length[s] = length;
+      if (length <= m_capacity[s]) continue;
+      m_abandoned += m_capacity[s];
+      m_offset[s] = Index(m_update.size());
+      m_capacity[s] = length;
+      if (m_update.capacity() < m_update.size() + std::size_t(length))  // (grown by an eighth, not doubled)
+        m_update.reserve(m_update.size() + std::size_t(length) + m_update.size() / 8);
+      m_update.resize(m_update.size() + std::size_t(length));
+    }
+    if (m_abandoned > live) compactUpdates();
   }
 
   /** Frees the memory held (the next forward() does a full pass). */
@@ -114,18 +113,18 @@ class ForwardSolveCache {
     std::vector<Scalar>().swap(m_y);
     std::vector<Scalar>().swap(m_update);
     std::vector<Index>().swap(m_offset);
-    std::vector<Scalar>().swap(m_spareRhs);
-    std::vector<Scalar>().swap(m_spareY);
+    std::vector<Index>().swap(m_length);
+    std::vector<Index>().swap(m_capacity);
     std::vector<Scalar>().swap(m_spareUpdate);
-    std::vector<Index>().swap(m_spareOffset);
+    std::vector<Index>().swap(m_runs);
     std::vector<char>().swap(m_redo);
   }
 
   /** \returns the bytes held. */
   Index bytes() const {
-    return Index((m_rhs.capacity() + m_y.capacity() + m_update.capacity() + m_spareRhs.capacity() +
-                  m_spareY.capacity() + m_spareUpdate.capacity()) * sizeof(Scalar) +
-                 (m_offset.capacity() + m_spareOffset.capacity()) * sizeof(Index) + m_redo.capacity());
+    return Index((m_rhs.capacity() + m_y.capacity() + m_update.capacity() + m_spareUpdate.capacity()) * sizeof(Scalar) +
+                 (m_offset.capacity() + m_length.capacity() + m_capacity.capacity() + m_runs.capacity()) * sizeof(Index) +
+                 m_redo.capacity());
   }
 
   /** \returns the columns substituted by the last forward() (all n after a full pass). */
@@ -145,24 +144,104 @@ class ForwardSolveCache {
   }
 
  private:
-  /** Where each supernode's update vector starts (below()·k scalars each), and the total at [ns]. */
-  static void updateOffsets(const Factor& f, Index k, std::vector<Index>& offset) {
-    const Index ns = f.count();
-    offset.resize(ns + 1);
-    offset[0] = 0;
-    for (Index s = 0; s < ns; ++s) offset[s + 1] = offset[s] + f.nodes[s].below() * k;
-  }
-
-  /** Sizes the kept arrays for the factor and k right-hand sides; every supernode to be redone. */
+  /** Sizes the kept arrays for the factor and k right-hand sides, the update vectors one after
+    * the other (below()·k scalars each); every supernode to be redone. */
   void reset(const Factor& f, Index k) {
     const Index ns = f.count();
     m_n = f.n;
     m_k = k;
-    updateOffsets(f, k, m_offset);
+    m_offset.resize(ns);
+    m_length.resize(ns);
+    Index total = 0;
+    for (Index s = 0; s < ns; ++s) {
+      m_offset[s] = total;
+      m_length[s] = f.nodes[s].below() * k;
+      total += m_length[s];
+    }
+    m_capacity = m_length;
+    m_abandoned = 0;
     m_rhs.resize(m_n * k);
     m_y.resize(m_n * k);
-    m_update.resize(m_offset[ns]);
+    m_update.resize(total);
     m_redo.assign(ns, 1);
+  }
+
+  /** Lays the update vectors out again one after the other (the kept ones keep their values). */
+  void compactUpdates() {
+    const Index ns = Index(m_offset.size());
+    Index total = 0;
+    for (Index s = 0; s < ns; ++s) total += m_length[s];
+    m_spareUpdate.resize(total);
+    for (Index s = 0, at = 0; s < ns; ++s) {
+      if (!m_redo[s])
+        std::copy(m_update.begin() + m_offset[s], m_update.begin() + m_offset[s] + m_length[s], m_spareUpdate.begin() + at);
+      m_offset[s] = at;
+      m_capacity[s] = m_length[s];
+      at += m_length[s];
+    }
+    m_update.swap(m_spareUpdate);
+    std::vector<Scalar>().swap(m_spareUpdate);
+    m_abandoned = 0;
+  }
+
+  /** Renumbers the n×k array \a a (column-major, leading dimension m_n) in place to leading
+    * dimension \a newN: entry q of each column goes to newPosition[q], or leaves when it is -1;
+    * the new entries nothing moves to get \a fill. The kept entries keep their order, so they
+    * move in runs of the same shift; entries before the first one that moves stay where they
+    * are (in the first column). \returns false when the positions are not such a renumbering in
+    * one direction (all kept entries moving up, or all moving down). */
+  template <typename Positions>
+  bool moveInPlace(const Positions& newPosition, Index newN, std::vector<Scalar>& a, const Scalar& fill) {
+    const Index oldN = m_n, k = m_k;
+    std::vector<Index>& runs = m_runs;  // (begin, end, shift) of each run of kept entries
+    runs.clear();
+    bool up = false, down = false;
+    for (Index q = 0; q < oldN; ++q) {
+      const Index to = Index(newPosition[q]);
+      if (to < 0) continue;
+      const Index shift = to - q;
+      up = up || shift > 0;
+      down = down || shift < 0;
+      if (!runs.empty() && runs[runs.size() - 2] == q && runs.back() == shift)
+        ++runs[runs.size() - 2];
+      else
+        runs.insert(runs.end(), {q, q + 1, shift});
+      if (to >= newN) return false;
+    }
+    if (up && down) return false;
+    const bool backward = up || newN > oldN;  // (each entry then moves up: in every column when n does not shrink)
+    if (backward && newN < oldN && k > 1) return false;
+    const Index count = Index(runs.size()) / 3;
+    auto fillHoles = [&](Index c) {  // the new entries of column c that no run reached
+      Scalar* column = a.data() + c * newN;
+      Index next = 0;
+      for (Index r = 0; r < count; ++r) {
+        const Index begin = runs[3 * r] + runs[3 * r + 2];
+        std::fill(column + next, column + begin, fill);
+        next = runs[3 * r + 1] + runs[3 * r + 2];
+      }
+      std::fill(column + next, column + newN, fill);
+    };
+    auto moveRun = [&](Index c, Index r) {
+      const Index begin = runs[3 * r], end = runs[3 * r + 1], shift = runs[3 * r + 2];
+      const Scalar* from = a.data() + c * oldN + begin;
+      Scalar* to = a.data() + c * newN + begin + shift;
+      if (from != to) std::memmove(to, from, std::size_t(end - begin) * sizeof(Scalar));
+    };
+    if (backward) {  // moving up: from the last entry down, after growing
+      if (newN > oldN) a.resize(std::size_t(newN * k));
+      for (Index c = k - 1; c >= 0; --c) {
+        for (Index r = count - 1; r >= 0; --r) moveRun(c, r);
+        fillHoles(c);
+      }
+    } else {  // moving down: from the first entry up, then shrinking
+      for (Index c = 0; c < k; ++c) {
+        for (Index r = 0; r < count; ++r) moveRun(c, r);
+        fillHoles(c);
+      }
+      a.resize(std::size_t(newN * k));
+    }
+    return true;
   }
 
   /** \internal Whether a[0..n) == b[0..n) (by value: a NaN differs from everything, and the
@@ -233,10 +312,13 @@ class ForwardSolveCache {
   std::vector<Scalar> m_rhs;     ///< the right-hand side of the kept substitution, n×k
   std::vector<Scalar> m_y;       ///< its result L^{-1} c, n×k
   std::vector<Scalar> m_update;  ///< each supernode's update vector, below()×k at m_offset[s]
-  std::vector<Index> m_offset;
+  std::vector<Index> m_offset;   ///< where each supernode's region of m_update starts
+  std::vector<Index> m_length;   ///< the scalars of each supernode's update vector (below()·k)
+  std::vector<Index> m_capacity; ///< the scalars its region holds (relabel() reuses it when they fit)
+  Index m_abandoned = 0;         ///< scalars of m_update in regions no supernode uses any more
   std::vector<char> m_redo;      ///< supernodes to substitute again (all zero after a pass)
-  std::vector<Scalar> m_spareRhs, m_spareY, m_spareUpdate;  ///< relabel()'s targets, swapped in
-  std::vector<Index> m_spareOffset;
+  std::vector<Scalar> m_spareUpdate;  ///< compactUpdates()'s target, swapped in
+  std::vector<Index> m_runs;     ///< moveInPlace()'s runs
 };
 
 }  // namespace updatable_cholesky

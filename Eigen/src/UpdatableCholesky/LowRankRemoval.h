@@ -126,32 +126,114 @@ EIGEN_DONT_INLINE void rotateColumns(Index n, Scalar* EIGEN_RESTRICT l, Scalar* 
   }
 }
 
-/** \internal Fold by Givens rotations of the W columns [first, first+count), zero above row
-  * \a start, column by column: [L(:,j) W(:,t)] G(j,t) for j >= start. */
-template <typename Scalar, typename StorageIndex, typename Dense>
-double foldByRotations(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count, Index start,
-                       const char* removed) {
+/** \internal Columns of L per panel and rows per block of rotationSweep(). */
+enum { RotationPanelColumns = 32, RotationRowBlock = 128 };
+
+/** \internal One rotation of rotationSweep(): the column pair (L(:,j), W(:,t)) and its
+  * parameters (see rotateColumns()). */
+template <typename Scalar>
+struct ColumnRotation {
+  Index j, t;
+  typename NumTraits<Scalar>::Real cosine, invCos;
+  Scalar sine, conjSine;
+};
+
+/** \internal l := (l − conj(s) w) / c and w := c w − s l (new l), elementwise: one hyperbolic
+  * rotation of a column pair (the downdate counterpart of rotateColumns()). */
+template <typename Scalar, typename RealScalar>
+EIGEN_DONT_INLINE void rotateColumnsHyperbolic(Index n, Scalar* EIGEN_RESTRICT l, Scalar* EIGEN_RESTRICT w,
+                                               RealScalar cosine, RealScalar invCos, Scalar sine, Scalar conjSine) {
+  for (Index i = 0; i < n; ++i) {
+    const Scalar li = (l[i] - conjSine * w[i]) * invCos;
+    l[i] = li;
+    w[i] = cosine * w[i] - sine * li;
+  }
+}
+
+/** \internal Sets \a g to the rotation of the column pair whose diagonal entry is \a ljj and
+  * whose W entry there is \a wj: a Givens rotation (L L^H + w w^H), or with \a Hyperbolic a
+  * hyperbolic one (L L^H − w w^H). \returns the new diagonal entry, 0 for a lost pivot. */
+template <bool Hyperbolic, typename Scalar>
+typename NumTraits<Scalar>::Real makeRotation(typename NumTraits<Scalar>::Real ljj, Scalar wj,
+                                              ColumnRotation<Scalar>& g) {
+  typedef typename NumTraits<Scalar>::Real RealScalar;
+  const RealScalar aw = numext::abs(wj);
+  RealScalar r;
+  if (Hyperbolic) {
+    const RealScalar r2 = (ljj - aw) * (ljj + aw);
+    if (!(r2 > RealScalar(0)) || !(r2 < NumTraits<RealScalar>::highest())) return RealScalar(0);
+    r = numext::sqrt(r2);
+  } else {
+    r = numext::hypot(ljj, aw);
+  }
+  g.cosine = r / ljj;
+  g.invCos = ljj / r;
+  g.sine = wj / ljj;
+  g.conjSine = numext::conj(g.sine);
+  return r;
+}
+
+/** \internal Applies to the supernode's kept columns from \a start on, column by column, a
+  * rotation with each of the W columns [first, first+count) that is non-zero on the column's
+  * diagonal row: Givens rotations (an update, L L^H + W W^H) or with \a Hyperbolic hyperbolic
+  * ones (a downdate, L L^H − W W^H); see makeRotation(). The rotations and their order on every
+  * row are those of the plain loop over columns and W columns, but they are applied in panels
+  * of RotationPanelColumns columns: a panel's rotations are made on its own rows, then applied
+  * to the rows below one block of RotationRowBlock rows at a time, so that the block's rows of
+  * the panel and of W stay in cache while all the panel's rotations pass over them (W is read
+  * once per panel, not once per column). \returns false on a lost pivot (the block is then
+  * partly changed); \a flops gets the work. */
+template <bool Hyperbolic, typename Scalar, typename StorageIndex, typename Dense>
+bool rotationSweep(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count, Index start,
+                   const char* removed, double& flops) {
   typedef typename NumTraits<Scalar>::Real RealScalar;
   const Index nr = node.nrows(), nc = node.ncols;
   Scalar* L = node.values.data();
-  double flops = 0;
-  for (Index j = start; j < nc; ++j) {
-    if (removed[node.rows[j]]) continue;
-    Scalar* lj = L + j * nr;
-    for (Index t = first; t < first + count; ++t) {
-      Scalar* w = W.data() + t * nr;
-      const Scalar wj = w[j];
-      if (wj == Scalar(0)) continue;
-      const RealScalar ljj = numext::real(lj[j]);
-      const RealScalar r = numext::hypot(ljj, numext::abs(wj));
-      const RealScalar cosine = r / ljj, invCos = ljj / r;
-      const Scalar sine = wj / ljj, conjSine = numext::conj(sine);
-      lj[j] = Scalar(r);
-      w[j] = Scalar(0);
-      rotateColumns(nr - j - 1, lj + j + 1, w + j + 1, cosine, invCos, sine, conjSine);
-      flops += 4.0 * double(nr - j);
+  Scalar* Wd = W.data();
+  auto rotate = [](Index n, Scalar* l, Scalar* w, const ColumnRotation<Scalar>& g) {
+    if (Hyperbolic)
+      rotateColumnsHyperbolic(n, l, w, g.cosine, g.invCos, g.sine, g.conjSine);
+    else
+      rotateColumns(n, l, w, g.cosine, g.invCos, g.sine, g.conjSine);
+  };
+  std::vector<ColumnRotation<Scalar> > panel;
+  for (Index j0 = start; j0 < nc; j0 += Index(RotationPanelColumns)) {
+    const Index j1 = (std::min)(nc, j0 + Index(RotationPanelColumns));
+    panel.clear();
+    for (Index j = j0; j < j1; ++j) {  // the panel's rotations, applied to the panel's rows
+      if (removed[node.rows[j]]) continue;
+      Scalar* lj = L + j * nr;
+      for (Index t = first; t < first + count; ++t) {
+        Scalar* w = Wd + t * nr;
+        if (w[j] == Scalar(0)) continue;
+        ColumnRotation<Scalar> rotation;
+        rotation.j = j;
+        rotation.t = t;
+        const RealScalar r = makeRotation<Hyperbolic>(numext::real(lj[j]), w[j], rotation);
+        if (!(r > RealScalar(0)) || !(r < NumTraits<RealScalar>::highest())) return false;
+        lj[j] = Scalar(r);
+        w[j] = Scalar(0);
+        rotate(j1 - j - 1, lj + j + 1, w + j + 1, rotation);
+        flops += 4.0 * double(nr - j);
+        panel.push_back(rotation);
+      }
+    }
+    for (Index i0 = j1; i0 < nr; i0 += Index(RotationRowBlock)) {  // ... then to the rows below, by blocks
+      const Index rows = (std::min)(Index(RotationRowBlock), nr - i0);
+      for (const ColumnRotation<Scalar>& rotation : panel)
+        rotate(rows, L + rotation.j * nr + i0, Wd + rotation.t * nr + i0, rotation);
     }
   }
+  return true;
+}
+
+/** \internal Fold by Givens rotations of the W columns [first, first+count), zero above row
+  * \a start, column by column: [L(:,j) W(:,t)] G(j,t) for j >= start (rotationSweep()). */
+template <typename Scalar, typename StorageIndex, typename Dense>
+double foldByRotations(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count, Index start,
+                       const char* removed) {
+  double flops = 0;
+  rotationSweep<false>(node, W, first, count, start, removed, flops);
   return flops;
 }
 

@@ -47,47 +47,14 @@ enum { UpdateChangeOversampling = 8 };
   * cuts (2.4-3x): the plan compares times, not flop counts. */
 enum { FoldFlopWeight = 3 };
 
-/** \internal l := (l − conj(s) w) / c and w := c w − s l (new l), elementwise: one hyperbolic
-  * rotation of a column pair (the downdate counterpart of rotateColumns()). */
-template <typename Scalar, typename RealScalar>
-EIGEN_DONT_INLINE void rotateColumnsHyperbolic(Index n, Scalar* EIGEN_RESTRICT l, Scalar* EIGEN_RESTRICT w,
-                                               RealScalar cosine, RealScalar invCos, Scalar sine, Scalar conjSine) {
-  for (Index i = 0; i < n; ++i) {
-    const Scalar li = (l[i] - conjSine * w[i]) * invCos;
-    l[i] = li;
-    w[i] = cosine * w[i] - sine * li;
-  }
-}
-
 /** \internal Downdates the supernode's kept columns from row \a start on by the W columns
   * [first, first+count): L L^H − W W^H = L' L'^H − W' W'^H with W' zero on the supernode's own
-  * rows. \returns false (the block partly changed) when a pivot is lost. */
+  * rows, by hyperbolic rotations in rotationSweep()'s panels. \returns false (the block partly
+  * changed) when a pivot is lost. */
 template <typename Scalar, typename StorageIndex, typename Dense>
 bool downdateByHyperbolicRotations(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count,
                                    Index start, const char* removed, double& flops) {
-  typedef typename NumTraits<Scalar>::Real RealScalar;
-  const Index nr = node.nrows(), nc = node.ncols;
-  Scalar* L = node.values.data();
-  for (Index j = start; j < nc; ++j) {
-    if (removed[node.rows[j]]) continue;
-    Scalar* lj = L + j * nr;
-    for (Index t = first; t < first + count; ++t) {
-      Scalar* w = W.data() + t * nr;
-      const Scalar wj = w[j];
-      if (wj == Scalar(0)) continue;
-      const RealScalar ljj = numext::real(lj[j]), aw = numext::abs(wj);
-      const RealScalar r2 = (ljj - aw) * (ljj + aw);
-      if (!(r2 > RealScalar(0)) || !(r2 < NumTraits<RealScalar>::highest())) return false;
-      const RealScalar r = numext::sqrt(r2);
-      const RealScalar cosine = r / ljj, invCos = ljj / r;
-      const Scalar sine = wj / ljj, conjSine = numext::conj(sine);
-      lj[j] = Scalar(r);
-      w[j] = Scalar(0);
-      rotateColumnsHyperbolic(nr - j - 1, lj + j + 1, w + j + 1, cosine, invCos, sine, conjSine);
-      flops += 4.0 * double(nr - j);
-    }
-  }
-  return true;
+  return rotationSweep<true>(node, W, first, count, start, removed, flops);
 }
 
 /** \internal Flops of splitting the change of an update matrix (m × m) of rank at most \a rank
@@ -290,9 +257,19 @@ void previousRowPositions(const StorageIndex* oldRows, Index count, const Storag
 template <typename Scalar>
 void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index m, std::vector<Scalar>& U) {
   const Index oldM = Index(at.size());
-  U.assign(m * m, Scalar(0));
-  for (Index b = 0; b < oldM; ++b)
-    for (Index a = b; a < oldM; ++a) U[at[a] + at[b] * m] = oldU[a + b * oldM];
+  U.resize(m * m);  // (only the lower triangle is written: the upper one is never read)
+  for (Index j = 0, b = 0; j < m; ++j) {
+    Scalar* column = U.data() + j * m;
+    Index i = j;
+    if (b < oldM && at[b] == j) {  // a previous column: its entries at their new rows, zero at the copies
+      for (Index a = b; a < oldM; ++a) {
+        for (; i < at[a]; ++i) column[i] = Scalar(0);
+        column[i++] = oldU[a + b * oldM];
+      }
+      ++b;
+    }
+    for (; i < m; ++i) column[i] = Scalar(0);
+  }
 }
 
 /** \internal Gives a folded supernode its previous block and update matrix, written into its new
@@ -312,9 +289,17 @@ bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<
     return true;
   }
   previousRowPositions(oldRows.data(), oldNr, node.rows.data(), newPosition, at);
-  node.values.setZero(nr, nc);
-  for (Index j = 0; j < nc; ++j)
-    for (Index k = 0; k < oldNr; ++k) node.values(at[k], j) = oldValues(k, j);
+  node.values.resize(nr, nc);
+  for (Index j = 0; j < nc; ++j) {  // each column in one pass: the previous entries, zero at the copies
+    Scalar* column = node.values.data() + j * nr;
+    const Scalar* previous = oldValues.data() + j * oldNr;
+    Index i = 0;
+    for (Index k = 0; k < oldNr; ++k) {
+      for (; i < at[k]; ++i) column[i] = Scalar(0);
+      column[i++] = previous[k];
+    }
+    for (; i < nr; ++i) column[i] = Scalar(0);
+  }
   for (Index k = nc; k < oldNr; ++k) at[k - nc] = at[k] - nc;  // (the rows below, from the supernode's first one below)
   at.resize(oldNr - nc);
   extendUpdateMatrix(oldU.data(), at, m, U);

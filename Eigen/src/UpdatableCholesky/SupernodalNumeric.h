@@ -354,38 +354,31 @@ class SupernodalNumeric {
     Scalar* L = node.values.data();
     // 1. the input's columns
     assemble(node, in);
-    // 2. this supernode's update matrix, then the children's update matrices added in
+    // 2. this supernode's update matrix (its lower triangle is written by the front's rank-k
+    //    product, so it is not zeroed here), and the children's update matrices' columns that
+    //    fall into this supernode's columns
     Scalar* U = nullptr;
     Index uOffset = 0;
     if (m_cacheUpdates) {
-      m_cache[s].assign(m * m, Scalar(0));
+      m_cache[s].resize(m * m);
       m_pending[s].clear();  // recomputed: earlier corrections are part of the new values
       U = m_cache[s].data();
     } else {
       UpdateStack<Scalar>& stack = m_stacks[stackId];
       uOffset = stack.push(m * m);
       U = stack.buffer.data() + uOffset;
-      std::fill(U, U + m * m, Scalar(0));
     }
-    Index lowestChild = -1;
+#ifndef NDEBUG  // U's previous values are never read: poisoned, so that a test reading them fails
+    std::fill(U, U + m * m, Scalar(std::numeric_limits<RealScalar>::quiet_NaN()));
+#endif
+    auto childUpdate = [&](Index c) -> const Scalar* {
+      return m_cacheUpdates ? m_cache[c].data() : m_stacks[m_location[c].stack].buffer.data() + m_location[c].offset;
+    };
     for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) {
-      const Location& loc = m_location[c];
       if (m_cacheUpdates && !m_pending[c].empty()) applyCorrections(f, c);
-      const Scalar* childU = m_cacheUpdates ? m_cache[c].data() : m_stacks[loc.stack].buffer.data() + loc.offset;
-      extendAdd(f.nodes[c], childU, L, nr, nc, U, m);
-      if (!m_cacheUpdates && loc.stack == stackId && (lowestChild < 0 || loc.offset < lowestChild))
-        lowestChild = loc.offset;
+      extendAddIntoBlock(f.nodes[c], childUpdate(c), L, nr, nc);
     }
-    if (lowestChild >= 0) {  // pop the children: they sit right below on this stack
-      UpdateStack<Scalar>& stack = m_stacks[stackId];
-      std::memmove(stack.buffer.data() + lowestChild, U, sizeof(Scalar) * m * m);
-      uOffset = lowestChild;
-      stack.top = lowestChild + m * m;
-      U = stack.buffer.data() + uOffset;
-    }
-    m_location[s].stack = stackId;
-    m_location[s].offset = uOffset;
-    // 3. dense factorization of the front
+    // 3. dense factorization of the front, then the rest of the children's update matrices
     const Index bad = factorFront(node, L, U, in, stackId);
     if (bad >= 0) {
       Index expected = -1;
@@ -394,6 +387,21 @@ class SupernodalNumeric {
       }
       return false;
     }
+    Index lowestChild = -1;
+    for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) {
+      extendAddIntoUpdate(f.nodes[c], childUpdate(c), nc, U, m);
+      const Location& loc = m_location[c];
+      if (!m_cacheUpdates && loc.stack == stackId && (lowestChild < 0 || loc.offset < lowestChild))
+        lowestChild = loc.offset;
+    }
+    if (lowestChild >= 0) {  // pop the children: they sit right below on this stack
+      UpdateStack<Scalar>& stack = m_stacks[stackId];
+      std::memmove(stack.buffer.data() + lowestChild, U, sizeof(Scalar) * m * m);
+      uOffset = lowestChild;
+      stack.top = lowestChild + m * m;
+    }
+    m_location[s].stack = stackId;
+    m_location[s].offset = uOffset;
     return true;
   }
 
@@ -412,6 +420,7 @@ class SupernodalNumeric {
       Index kc = 0;
       while (kc < kr && kept[kc] < nc) ++kc;
       const Index km = kr - kc;
+      std::fill(U, U + m * m, Scalar(0));  // (the children's updates are added afterwards)
       if (kc == 0) return -1;  // only unit columns: the children's updates pass through U unchanged
       ws.front.assign(kr * kc, Scalar(0));
       Scalar* F = ws.front.data();
@@ -441,26 +450,35 @@ class SupernodalNumeric {
     if (bad >= 0) return bad;
     if (m > 0) {
       trsmRightLowerAdjoint(m, nc, L, nr, L + nc, nr);
-      herkLower(m, nc, RealScalar(-1), L + nc, nr, U, m);
+      herkLower(m, nc, RealScalar(-1), L + nc, nr, U, m, /*overwrite=*/true);
     }
     return -1;
   }
 
-  /** Adds the child's update matrix (lower triangle, m×m) into the parent's block and update
-    * matrix, through the child's precomputed positions in the parent's rows. */
-  static void extendAdd(const Node& child, const Scalar* U, Scalar* L, Index nr, Index nc, Scalar* P, Index pm) {
+  /** Adds the columns of the child's update matrix (lower triangle, m×m) that fall into the
+    * parent's own columns into the parent's block, through the child's precomputed positions in
+    * the parent's rows. */
+  static void extendAddIntoBlock(const Node& child, const Scalar* U, Scalar* L, Index nr, Index nc) {
     const Index m = child.below();
     const StorageIndex* pos = child.parentPosition.data();
     for (Index k = 0; k < m; ++k) {
-      const Index t = pos[k];
+      if (pos[k] >= nc) continue;
       const Scalar* src = U + k * m;
-      if (t < nc) {
-        Scalar* dst = L + t * nr;
-        for (Index i = k; i < m; ++i) dst[pos[i]] += src[i];
-      } else {
-        Scalar* dst = P + (t - nc) * pm - nc;
-        for (Index i = k; i < m; ++i) dst[pos[i]] += src[i];
-      }
+      Scalar* dst = L + pos[k] * nr;
+      for (Index i = k; i < m; ++i) dst[pos[i]] += src[i];
+    }
+  }
+
+  /** Adds the rest of the child's update matrix (the columns at the parent's rows below) into
+    * the parent's update matrix P (pm × pm). */
+  static void extendAddIntoUpdate(const Node& child, const Scalar* U, Index nc, Scalar* P, Index pm) {
+    const Index m = child.below();
+    const StorageIndex* pos = child.parentPosition.data();
+    for (Index k = 0; k < m; ++k) {
+      if (pos[k] < nc) continue;
+      const Scalar* src = U + k * m;
+      Scalar* dst = P + (pos[k] - nc) * pm - nc;
+      for (Index i = k; i < m; ++i) dst[pos[i]] += src[i];
     }
   }
 

@@ -297,7 +297,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     * between calls, and the kept forward substitution of setSolveCaching()). */
   Index memoryBytes() const {
     Index b = m_numeric.workspaceBytes() + m_solveCache.bytes() + m_inputDiff.bytes() + m_store.bytes() + m_transposed.bytes() +
-              m_insertChange.bytes() + m_mergeChange.bytes();
+              m_insertChange.bytes() + m_mergeChange.bytes() + m_structureBackup.bytes();
     for (const auto& node : m_factor.nodes)
       b += Index(node.values.size() * sizeof(Scalar) + node.rows.capacity() * sizeof(StorageIndex) +
                  node.parentPosition.capacity() * sizeof(StorageIndex) +
