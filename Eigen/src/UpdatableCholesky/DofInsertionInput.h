@@ -294,11 +294,12 @@ struct OuterRange {
   * when it differs by at most 64 roundings of the magnitudes that make it. Appends the G dofs of
   * the differing entries to \a out, once each, and marks them in \a flag (by G dof, zero on entry
   * for the dofs not in \a out): 2 when some entry of theirs differs by more than sqrt(eps) of its
-  * magnitudes, else 1 (a small mismatch, such as a regularization added to every diagonal). */
+  * magnitudes, else 1 (a small mismatch, such as a regularization added to every diagonal).
+  * \a bucket: scratch by G dof, all -1 on entry and on return. */
 template <bool RowMajor, typename Scalar, typename StorageIndex, typename Glue>
 void gluingMismatches(const InputStore<Scalar, StorageIndex>& cut, const std::vector<OuterRange>& cutRanges, Glue&& glue,
                       const InputStore<Scalar, StorageIndex>& glued, const std::vector<OuterRange>& gluedRanges,
-                      std::vector<char>& flag, std::vector<StorageIndex>& out) {
+                      std::vector<char>& flag, std::vector<StorageIndex>& out, std::vector<Index>& bucket) {
   typedef typename NumTraits<Scalar>::Real RealScalar;
   struct Term {
     Index row, col;
@@ -328,8 +329,30 @@ void gluingMismatches(const InputStore<Scalar, StorageIndex>& cut, const std::ve
   };
   read(cut, cutRanges, true);
   read(glued, gluedRanges, false);
-  std::sort(terms.begin(), terms.end(),
-            [](const Term& a, const Term& b) { return a.row < b.row || (a.row == b.row && a.col < b.col); });
+  // group the terms by row (a counting sort over the rows that occur: bucket[row] holds the
+  // row's slot, -1 between uses), then by column within each row (a few terms each)
+  std::vector<Index> rows, start;
+  for (const Term& t : terms) {
+    if (bucket[t.row] < 0) {
+      bucket[t.row] = Index(rows.size());
+      rows.push_back(t.row);
+      start.push_back(0);
+    }
+    ++start[bucket[t.row]];
+  }
+  for (Index b = 0, at = 0; b < Index(start.size()); ++b) {
+    const Index count = start[b];
+    start[b] = at;
+    at += count;
+  }
+  std::vector<Term> grouped(terms.size());
+  for (const Term& t : terms) grouped[start[bucket[t.row]]++] = t;  // (start[b] ends at the row's end)
+  for (Index b = 0; b < Index(rows.size()); ++b) {
+    bucket[rows[b]] = -1;
+    const Index begin = b == 0 ? 0 : start[b - 1];
+    std::sort(grouped.begin() + begin, grouped.begin() + start[b], [](const Term& a, const Term& c) { return a.col < c.col; });
+  }
+  terms.swap(grouped);
   const RealScalar roundings = RealScalar(64) * NumTraits<RealScalar>::epsilon();
   const RealScalar small = numext::sqrt(NumTraits<RealScalar>::epsilon());
   for (std::size_t k = 0; k < terms.size();) {
@@ -415,6 +438,7 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
       source.push_back(src);
       target.push_back(t >= 0 ? offset : ~offset);
     }
+    const Index kept = Index(source.size());  // (in column order: the old map was, and the relabeling keeps the columns' order)
     while (next != fresh.end() && f.colToSuper[next->col] < s) ++next;  // (cannot happen: fresh entries are dirty)
     for (; next != fresh.end() && f.colToSuper[next->col] == s; ++next) {
       const Index offset = (Index(next->col) - node.firstCol) * nr + position[next->row];
@@ -423,12 +447,15 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
       target.push_back(next->source >= 0 ? offset : ~offset);
     }
     // the map lists the entries column by column, as buildAssemblyMaps() does (the Dirichlet
-    // coupling finds a column's range by bisection)
+    // coupling finds a column's range by bisection): the fresh entries are sorted and merged
+    // into the kept ones, which are in column order already
     order.resize(source.size());
     for (Index k = 0; k < Index(order.size()); ++k) order[k] = k;
     auto columnOf = [nr](Index t) { return (t >= 0 ? t : ~t) / nr; };
-    std::stable_sort(order.begin(), order.end(),
-                     [&](Index a, Index b) { return columnOf(target[a]) < columnOf(target[b]); });
+    auto byColumn = [&](Index a, Index b) { return columnOf(target[a]) < columnOf(target[b]); };
+    eigen_assert(std::is_sorted(order.begin(), order.begin() + kept, byColumn) && "remapAssemblyMaps: kept entries out of column order");
+    std::stable_sort(order.begin() + kept, order.end(), byColumn);
+    std::inplace_merge(order.begin(), order.begin() + kept, order.end(), byColumn);
     node.assemblySource.resize(order.size());
     node.assemblyTarget.resize(order.size());
     for (Index k = 0; k < Index(order.size()); ++k) {

@@ -1020,18 +1020,19 @@ const std::vector<typename MatrixType_::StorageIndex>& UpdatableSupernodalLLT<Ma
     }
   }
   diff.mismatch.resize((std::max)(n, total), 0);
+  diff.stamp.resize((std::max)(n, total), -1);
   diff.mismatchList.clear();
   constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
   if (!change.merging) {  // the new matrix is cut: old dofs glue onto themselves, copies onto their origins
     for (Index x = n; x < total; ++x) newRanges.push_back(OuterRange{x, m_store.begin[x], m_store.end[x]});
     gluingMismatches<rowMajor>(m_store, newRanges, [&change](Index x) { return Index(change.preList[x]); },
-                               previous, oldRanges, diff.mismatch, diff.mismatchList);
+                               previous, oldRanges, diff.mismatch, diff.mismatchList, diff.stamp);
   } else {  // the previous matrix is cut: each previous dof glues onto the kept dof it stands for
     std::vector<StorageIndex> keptOf(n);
     for (Index x = 0; x < total; ++x)
       for (Index p = change.preStart[x]; p < change.preStart[x + 1]; ++p) keptOf[change.preList[p]] = StorageIndex(x);
     gluingMismatches<rowMajor>(previous, oldRanges, [&keptOf](Index i) { return Index(keptOf[i]); }, m_store,
-                               newRanges, diff.mismatch, diff.mismatchList);
+                               newRanges, diff.mismatch, diff.mismatchList, diff.stamp);
   }
   return diff.mismatchList;
 }
