@@ -439,10 +439,10 @@ TEST_CASE_TEMPLATE("gluing a cut back finds where it differs from the uncut matr
       uncutRanges.push_back(Range{o, uncutStore.begin[o], uncutStore.end[o]});
     std::vector<char> flag(n, 0);
     std::vector<StorageIndex> out;
-    std::vector<Index> bucket(n, -1);
+    Eigen::internal::updatable_cholesky::GluingScratch<Scalar> scratch;
     Eigen::internal::updatable_cholesky::gluingMismatches<rowMajor>(
-        cutStore, cutRanges, [&](Index x) { return Index(origin[x]); }, uncutStore, uncutRanges, flag, out, bucket);
-    CHECK(std::count(bucket.begin(), bucket.end(), Index(-1)) == n);  // the scratch is left as it came
+        cutStore, cutRanges, [&](Index x) { return Index(origin[x]); }, uncutStore, uncutRanges, flag, out, scratch);
+    CHECK(std::count(scratch.bucket.begin(), scratch.bucket.end(), Index(-1)) == Index(scratch.bucket.size()));  // left as it came
     std::map<Index, int> result;
     for (StorageIndex x : out) result[Index(x)] = flag[x];
     return result;

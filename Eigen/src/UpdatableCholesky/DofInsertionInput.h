@@ -46,6 +46,26 @@ struct FreshEntry {
   StorageIndex row, col;
 };
 
+
+/** \internal The scratch of gluingMismatches(), kept by the solver between calls. */
+template <typename Scalar>
+struct GluingScratch {
+  /** One entry of C glued back or of −G, at (row, col) with row >= col, and its magnitude. */
+  struct Term {
+    Index row, col;
+    Scalar value;
+    typename NumTraits<Scalar>::Real magnitude;
+  };
+  std::vector<Term> terms, grouped;  ///< the entries read, and the same grouped by row
+  std::vector<Index> bucket;         ///< by G dof: its row's slot, -1 between uses
+  std::vector<Index> rows, start;    ///< the rows that occur and where their terms start
+  /** Bytes held. */
+  Index bytes() const {
+    return Index((terms.capacity() + grouped.capacity()) * sizeof(Term) +
+                 (bucket.capacity() + rows.capacity() + start.capacity()) * sizeof(Index));
+  }
+};
+
 /** \internal The result of diffInput() and the scratch space of the insertions, kept by the
   * solver between calls so that they allocate (and fault in) nothing proportional to nnz. */
 template <typename Scalar, typename StorageIndex>
@@ -71,6 +91,7 @@ struct InputDiff {
   TransposedPattern<StorageIndex> spareTransposed;  ///< rebuilt: the previous transposed pattern (the revert)
   std::vector<char> mismatch;  ///< scratch by new dof, zero between uses (gluingMismatches())
   std::vector<StorageIndex> mismatchList;  ///< the dofs where the cut matrix does not glue back
+  GluingScratch<Scalar> gluing;  ///< gluingMismatches()'s scratch
 
   /** Makes posMap the identity on the positions of \a store. */
   void resetPositions(const InputStore<Scalar, StorageIndex>& store) {
@@ -120,7 +141,7 @@ struct InputDiff {
                  (posMap.capacity() + freshOuter.capacity() + position.capacity() + changedList.capacity() +
                   mismatchList.capacity()) *
                      sizeof(StorageIndex) +
-                 spare.bytes() + spareTransposed.bytes() + rewrites.capacity() * sizeof(Rewrite));
+                 spare.bytes() + spareTransposed.bytes() + rewrites.capacity() * sizeof(Rewrite) + gluing.bytes());
   }
 };
 
@@ -295,18 +316,20 @@ struct OuterRange {
   * the differing entries to \a out, once each, and marks them in \a flag (by G dof, zero on entry
   * for the dofs not in \a out): 2 when some entry of theirs differs by more than sqrt(eps) of its
   * magnitudes, else 1 (a small mismatch, such as a regularization added to every diagonal).
-  * \a bucket: scratch by G dof, all -1 on entry and on return. */
+  * \a scratch: kept between calls (its bucket all -1 on entry and on return). */
 template <bool RowMajor, typename Scalar, typename StorageIndex, typename Glue>
 void gluingMismatches(const InputStore<Scalar, StorageIndex>& cut, const std::vector<OuterRange>& cutRanges, Glue&& glue,
                       const InputStore<Scalar, StorageIndex>& glued, const std::vector<OuterRange>& gluedRanges,
-                      std::vector<char>& flag, std::vector<StorageIndex>& out, std::vector<Index>& bucket) {
+                      std::vector<char>& flag, std::vector<StorageIndex>& out, GluingScratch<Scalar>& scratch) {
   typedef typename NumTraits<Scalar>::Real RealScalar;
-  struct Term {
-    Index row, col;
-    Scalar value;
-    RealScalar magnitude;
-  };
-  std::vector<Term> terms;
+  typedef typename GluingScratch<Scalar>::Term Term;
+  std::vector<Term>& terms = scratch.terms;
+  std::vector<Index>& bucket = scratch.bucket;
+  Index count = 0;
+  for (const OuterRange& range : cutRanges) count += range.end - range.begin;
+  for (const OuterRange& range : gluedRanges) count += range.end - range.begin;
+  terms.clear();
+  terms.reserve(count);
   auto add = [&terms](Index r, Index c, const Scalar& v) {  // entry (r, c) of a Hermitian matrix, as (max, min)
     if (r >= c)
       terms.push_back(Term{r, c, v, numext::abs(v)});
@@ -331,7 +354,12 @@ void gluingMismatches(const InputStore<Scalar, StorageIndex>& cut, const std::ve
   read(glued, gluedRanges, false);
   // group the terms by row (a counting sort over the rows that occur: bucket[row] holds the
   // row's slot, -1 between uses), then by column within each row (a few terms each)
-  std::vector<Index> rows, start;
+  Index dofs = 0;  // (the G dofs that occur: bucket covers them)
+  for (const Term& t : terms) dofs = (std::max)(dofs, t.row + 1);
+  if (Index(bucket.size()) < dofs) bucket.resize(dofs, -1);
+  std::vector<Index>&rows = scratch.rows, &start = scratch.start;
+  rows.clear();
+  start.clear();
   for (const Term& t : terms) {
     if (bucket[t.row] < 0) {
       bucket[t.row] = Index(rows.size());
@@ -345,7 +373,8 @@ void gluingMismatches(const InputStore<Scalar, StorageIndex>& cut, const std::ve
     start[b] = at;
     at += count;
   }
-  std::vector<Term> grouped(terms.size());
+  std::vector<Term>& grouped = scratch.grouped;
+  grouped.resize(terms.size());  // (kept between calls: no new pages once it has grown)
   for (const Term& t : terms) grouped[start[bucket[t.row]]++] = t;  // (start[b] ends at the row's end)
   for (Index b = 0; b < Index(rows.size()); ++b) {
     bucket[rows[b]] = -1;

@@ -53,6 +53,8 @@ struct UpdateWorkspace {
   std::vector<Index> rank, local, first;                    ///< per-supernode ranks, first columns (cost model)
   std::vector<double> cost;                                 ///< per-supernode low-rank flops (cost model)
   std::vector<Index> foldBound;  ///< 1 + rank bound of a refactored child of a folded supernode (insertions), else 0
+  std::vector<char> eligible;    ///< insertions' plan: a dirty supernode may be folded (zero for the others between calls)
+  std::vector<Index> rankColumns, likelyRankColumns, rowRank;  ///< insertions' plan: per dirty supernode (zero between calls)
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carried;   ///< W passed to the parent
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carriedNegative;  ///< downdate part passed up (insertions)
   void resize(Index supernodes) {
@@ -62,6 +64,10 @@ struct UpdateWorkspace {
     first.assign(supernodes, 0);
     cost.assign(supernodes, 0.0);
     foldBound.assign(supernodes, 0);
+    eligible.assign(supernodes, 0);
+    rankColumns.assign(supernodes, 0);
+    likelyRankColumns.assign(supernodes, 0);
+    rowRank.assign(supernodes, 0);
     carried.clear();
     carried.resize(supernodes);
     carriedNegative.clear();

@@ -1020,19 +1020,18 @@ const std::vector<typename MatrixType_::StorageIndex>& UpdatableSupernodalLLT<Ma
     }
   }
   diff.mismatch.resize((std::max)(n, total), 0);
-  diff.stamp.resize((std::max)(n, total), -1);
   diff.mismatchList.clear();
   constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
   if (!change.merging) {  // the new matrix is cut: old dofs glue onto themselves, copies onto their origins
     for (Index x = n; x < total; ++x) newRanges.push_back(OuterRange{x, m_store.begin[x], m_store.end[x]});
     gluingMismatches<rowMajor>(m_store, newRanges, [&change](Index x) { return Index(change.preList[x]); },
-                               previous, oldRanges, diff.mismatch, diff.mismatchList, diff.stamp);
+                               previous, oldRanges, diff.mismatch, diff.mismatchList, diff.gluing);
   } else {  // the previous matrix is cut: each previous dof glues onto the kept dof it stands for
     std::vector<StorageIndex> keptOf(n);
     for (Index x = 0; x < total; ++x)
       for (Index p = change.preStart[x]; p < change.preStart[x + 1]; ++p) keptOf[change.preList[p]] = StorageIndex(x);
     gluingMismatches<rowMajor>(previous, oldRanges, [&keptOf](Index i) { return Index(keptOf[i]); }, m_store,
-                               newRanges, diff.mismatch, diff.mismatchList, diff.stamp);
+                               newRanges, diff.mismatch, diff.mismatchList, diff.gluing);
   }
   return diff.mismatchList;
 }
@@ -1199,38 +1198,52 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     // identity). The change it gets from below has at most the rank of the copies (merged dofs)
     // below, plus the dofs where the cut matrix does not glue back to the uncut one, plus two
     // per copy row of the refactored child it comes from.
-    const std::vector<StorageIndex>& mismatched = gluingMismatchesOf(change);  // (flags in diff.mismatch)
     const Index ns = m_factor.count();
-    std::vector<char> eligible(ns, 0);
-    std::vector<Index> rankColumns(ns, 0), likelyRankColumns(ns, 0), rowRank(ns, 0);
+    std::vector<char>& eligible = m_workspace.eligible;  // (all zero between calls, as the three below)
+    std::vector<Index>&rankColumns = m_workspace.rankColumns, &likelyRankColumns = m_workspace.likelyRankColumns,
+                       &rowRank = m_workspace.rowRank;
+    double eligibleFlops = 0;
     for (Index s : dirty) {
       const auto& node = m_factor.nodes[s];
       bool same = true;
-      for (Index c = node.firstCol; c < node.firstCol + node.ncols; ++c) {
-        const StorageIndex x = m_Pinv.indices()[c], o = change.oldOfNew[x];
-        same = same && o >= 0 && !changed[o];
-        rankColumns[s] += (o < 0) + (diff.mismatch[x] > 0);
-        likelyRankColumns[s] += (o < 0) + (diff.mismatch[x] > 1);
+      for (Index c = node.firstCol; c < node.firstCol + node.ncols && same; ++c) {
+        const StorageIndex o = change.oldOfNew[m_Pinv.indices()[c]];
+        same = o >= 0 && !changed[o];
       }
-      if (!change.merging)
-        for (Index k = node.ncols; k < node.nrows(); ++k)
-          rowRank[s] += 2 * (change.oldOfNew[m_Pinv.indices()[node.rows[k]]] < 0);
       const bool sameRows = !change.merging || Index(backup.rows[s].size()) == node.nrows();
       eligible[s] = sameRows && backup.ncols[s] == node.ncols && same;
-      rankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);  // merged away
-      likelyRankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);
+      if (eligible[s]) eligibleFlops += internal::updatable_cholesky::frontFlops(node, removedFlags);
     }
-    for (StorageIndex x : mismatched) diff.mismatch[x] = 0;
     const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
-    folded.assign(ns, 0);
-    const double planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
-                                    m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
-    if (top.empty() || (!force && planned >= dirtyFlops)) {
-      top.clear();
-      bottom.clear();
-    } else {
-      plannedFlops = planned;
+    // a fold saves at most the refactorization of the supernodes it may fold: below a fiftieth
+    // of the dirty work, the plan (and the compare it needs) is not worth making
+    if (force || 50 * eligibleFlops >= dirtyFlops) {
+      const std::vector<StorageIndex>& mismatched = gluingMismatchesOf(change);  // (flags in diff.mismatch)
+      for (Index s : dirty) {
+        const auto& node = m_factor.nodes[s];
+        for (Index c = node.firstCol; c < node.firstCol + node.ncols; ++c) {
+          const StorageIndex x = m_Pinv.indices()[c], o = change.oldOfNew[x];
+          rankColumns[s] += (o < 0) + (diff.mismatch[x] > 0);
+          likelyRankColumns[s] += (o < 0) + (diff.mismatch[x] > 1);
+        }
+        if (!change.merging)
+          for (Index k = node.ncols; k < node.nrows(); ++k)
+            rowRank[s] += 2 * (change.oldOfNew[m_Pinv.indices()[node.rows[k]]] < 0);
+        rankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);  // merged away
+        likelyRankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);
+      }
+      for (StorageIndex x : mismatched) diff.mismatch[x] = 0;
+      folded.assign(ns, 0);
+      const double planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
+                                      m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
+      if (top.empty() || (!force && planned >= dirtyFlops)) {
+        top.clear();
+        bottom.clear();
+      } else {
+        plannedFlops = planned;
+      }
     }
+    for (Index s : dirty) eligible[s] = rankColumns[s] = likelyRankColumns[s] = rowRank[s] = 0;
   }
   UpdateRoute route = top.empty() ? UpdateRoute::PartialRefactorization : UpdateRoute::Mixed;
   const bool forced = m_route != UpdateRoute::Automatic;  // (a forced Mixed or partial route stays)
