@@ -234,6 +234,7 @@ class ForwardSolveCache {
         for (Index r = count - 1; r >= 0; --r) moveRun(c, r);
         fillHoles(c);
       }
+      a.resize(std::size_t(newN * k));  // (entries dropped at the end while the others move up: one column)
     } else {  // moving down: from the first entry up, then shrinking
       for (Index c = 0; c < k; ++c) {
         for (Index r = 0; r < count; ++r) moveRun(c, r);
