@@ -46,7 +46,6 @@ struct FreshEntry {
   StorageIndex row, col;
 };
 
-
 /** \internal The scratch of gluingMismatches(), kept by the solver between calls. */
 template <typename Scalar>
 struct GluingScratch {

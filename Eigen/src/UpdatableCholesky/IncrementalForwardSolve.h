@@ -81,9 +81,9 @@ class ForwardSolveCache {
     const Index ns = f.count(), oldN = m_n, newN = f.n, k = m_k;
     if (Index(newPosition.size()) != oldN || Index(m_redo.size()) != ns) return invalidate();
     typedef typename NumTraits<Scalar>::Real Real;
-    if (!moveInPlace(newPosition, newN, m_rhs, Scalar(std::numeric_limits<Real>::quiet_NaN())) ||  // (NaN equals nothing)
-        !moveInPlace(newPosition, newN, m_y, Scalar(0)))
-      return invalidate();
+    if (!planMove(newPosition, newN)) return invalidate();
+    moveInPlace(newN, m_rhs, Scalar(std::numeric_limits<Real>::quiet_NaN()));  // (NaN equals nothing)
+    moveInPlace(newN, m_y, Scalar(0));
     m_n = newN;
     // the update vectors: a supernode whose rows below changed is substituted again, in its
     // region if it fits, else in a new one at the end; the regions are laid out anew once the
@@ -115,14 +115,13 @@ class ForwardSolveCache {
     std::vector<Index>().swap(m_offset);
     std::vector<Index>().swap(m_length);
     std::vector<Index>().swap(m_capacity);
-    std::vector<Scalar>().swap(m_spareUpdate);
     std::vector<Index>().swap(m_runs);
     std::vector<char>().swap(m_redo);
   }
 
   /** \returns the bytes held. */
   Index bytes() const {
-    return Index((m_rhs.capacity() + m_y.capacity() + m_update.capacity() + m_spareUpdate.capacity()) * sizeof(Scalar) +
+    return Index((m_rhs.capacity() + m_y.capacity() + m_update.capacity()) * sizeof(Scalar) +
                  (m_offset.capacity() + m_length.capacity() + m_capacity.capacity() + m_runs.capacity()) * sizeof(Index) +
                  m_redo.capacity());
   }
@@ -171,34 +170,33 @@ class ForwardSolveCache {
     const Index ns = Index(m_offset.size());
     Index total = 0;
     for (Index s = 0; s < ns; ++s) total += m_length[s];
-    m_spareUpdate.resize(total);
+    std::vector<Scalar> compact(total);
     for (Index s = 0, at = 0; s < ns; ++s) {
       if (!m_redo[s])
-        std::copy(m_update.begin() + m_offset[s], m_update.begin() + m_offset[s] + m_length[s], m_spareUpdate.begin() + at);
+        std::copy(m_update.begin() + m_offset[s], m_update.begin() + m_offset[s] + m_length[s], compact.begin() + at);
       m_offset[s] = at;
       m_capacity[s] = m_length[s];
       at += m_length[s];
     }
-    m_update.swap(m_spareUpdate);
-    std::vector<Scalar>().swap(m_spareUpdate);
+    m_update.swap(compact);
     m_abandoned = 0;
   }
 
-  /** Renumbers the n×k array \a a (column-major, leading dimension m_n) in place to leading
-    * dimension \a newN: entry q of each column goes to newPosition[q], or leaves when it is -1;
-    * the new entries nothing moves to get \a fill. The kept entries keep their order, so they
-    * move in runs of the same shift; entries before the first one that moves stay where they
-    * are (in the first column). \returns false when the positions are not such a renumbering in
-    * one direction (all kept entries moving up, or all moving down). */
+  /** Plans the renumbering of the n×k arrays (column-major, leading dimension m_n) to leading
+    * dimension \a newN: entry q of each column goes to newPosition[q], or leaves when it is -1.
+    * The kept entries keep their order, so they move in runs of the same shift (m_runs). \returns
+    * false when the positions are not such a renumbering in one direction (all kept entries
+    * moving up, or all moving down), which moveInPlace() could not do in place. */
   template <typename Positions>
-  bool moveInPlace(const Positions& newPosition, Index newN, std::vector<Scalar>& a, const Scalar& fill) {
-    const Index oldN = m_n, k = m_k;
+  bool planMove(const Positions& newPosition, Index newN) {
+    const Index oldN = m_n;
     std::vector<Index>& runs = m_runs;  // (begin, end, shift) of each run of kept entries
     runs.clear();
     bool up = false, down = false;
     for (Index q = 0; q < oldN; ++q) {
       const Index to = Index(newPosition[q]);
       if (to < 0) continue;
+      if (to >= newN) return false;
       const Index shift = to - q;
       up = up || shift > 0;
       down = down || shift < 0;
@@ -206,11 +204,17 @@ class ForwardSolveCache {
         ++runs[runs.size() - 2];
       else
         runs.insert(runs.end(), {q, q + 1, shift});
-      if (to >= newN) return false;
     }
-    if (up && down) return false;
-    const bool backward = up || newN > oldN;  // (each entry then moves up: in every column when n does not shrink)
-    if (backward && newN < oldN && k > 1) return false;
+    m_moveUp = up || newN > oldN;  // (each entry then moves up: in every column when n does not shrink)
+    return !(up && down) && !(m_moveUp && newN < oldN && m_k > 1);
+  }
+
+  /** Renumbers the n×k array \a a in place as planMove() planned; the new entries that nothing
+    * moves to get \a fill. Runs that do not move (before the first moved entry, in the first
+    * column) are not touched. */
+  void moveInPlace(Index newN, std::vector<Scalar>& a, const Scalar& fill) const {
+    const Index oldN = m_n, k = m_k;
+    const std::vector<Index>& runs = m_runs;
     const Index count = Index(runs.size()) / 3;
     auto fillHoles = [&](Index c) {  // the new entries of column c that no run reached
       Scalar* column = a.data() + c * newN;
@@ -228,21 +232,19 @@ class ForwardSolveCache {
       Scalar* to = a.data() + c * newN + begin + shift;
       if (from != to) std::memmove(to, from, std::size_t(end - begin) * sizeof(Scalar));
     };
-    if (backward) {  // moving up: from the last entry down, after growing
+    if (m_moveUp) {  // from the last entry down, after growing
       if (newN > oldN) a.resize(std::size_t(newN * k));
       for (Index c = k - 1; c >= 0; --c) {
         for (Index r = count - 1; r >= 0; --r) moveRun(c, r);
         fillHoles(c);
       }
-      a.resize(std::size_t(newN * k));  // (entries dropped at the end while the others move up: one column)
-    } else {  // moving down: from the first entry up, then shrinking
+    } else {  // from the first entry up
       for (Index c = 0; c < k; ++c) {
         for (Index r = 0; r < count; ++r) moveRun(c, r);
         fillHoles(c);
       }
-      a.resize(std::size_t(newN * k));
     }
-    return true;
+    a.resize(std::size_t(newN * k));  // (shrinking, when entries left)
   }
 
   /** \internal Whether a[0..n) == b[0..n) (by value: a NaN differs from everything, and the
@@ -318,8 +320,8 @@ class ForwardSolveCache {
   std::vector<Index> m_capacity; ///< the scalars its region holds (relabel() reuses it when they fit)
   Index m_abandoned = 0;         ///< scalars of m_update in regions no supernode uses any more
   std::vector<char> m_redo;      ///< supernodes to substitute again (all zero after a pass)
-  std::vector<Scalar> m_spareUpdate;  ///< compactUpdates()'s target, swapped in
-  std::vector<Index> m_runs;     ///< moveInPlace()'s runs
+  std::vector<Index> m_runs;     ///< planMove()'s runs of kept entries: (begin, end, shift) each
+  bool m_moveUp = false;         ///< planMove(): the entries move up (moveInPlace() goes from the end)
 };
 
 }  // namespace updatable_cholesky

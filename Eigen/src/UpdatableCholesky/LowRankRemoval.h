@@ -152,7 +152,8 @@ EIGEN_DONT_INLINE void rotateColumnsHyperbolic(Index n, Scalar* EIGEN_RESTRICT l
 
 /** \internal Sets \a g to the rotation of the column pair whose diagonal entry is \a ljj and
   * whose W entry there is \a wj: a Givens rotation (L L^H + w w^H), or with \a Hyperbolic a
-  * hyperbolic one (L L^H − w w^H). \returns the new diagonal entry, 0 for a lost pivot. */
+  * hyperbolic one (L L^H − w w^H). \returns the new diagonal entry (not positive and finite: a
+  * lost pivot, which the caller checks). */
 template <bool Hyperbolic, typename Scalar>
 typename NumTraits<Scalar>::Real makeRotation(typename NumTraits<Scalar>::Real ljj, Scalar wj,
                                               ColumnRotation<Scalar>& g) {
@@ -161,7 +162,7 @@ typename NumTraits<Scalar>::Real makeRotation(typename NumTraits<Scalar>::Real l
   RealScalar r;
   if (Hyperbolic) {
     const RealScalar r2 = (ljj - aw) * (ljj + aw);
-    if (!(r2 > RealScalar(0)) || !(r2 < NumTraits<RealScalar>::highest())) return RealScalar(0);
+    if (!(r2 > RealScalar(0))) return RealScalar(0);
     r = numext::sqrt(r2);
   } else {
     r = numext::hypot(ljj, aw);

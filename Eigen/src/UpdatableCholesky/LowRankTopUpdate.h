@@ -251,6 +251,19 @@ void previousRowPositions(const StorageIndex* oldRows, Index count, const Storag
   }
 }
 
+/** \internal Writes column[begin, end) from the \a count previous entries \a previous, each at
+  * its new row at[k] (increasing, within the range), and zero at the rows between them (the
+  * copies' rows, which the previous matrix extended with identity has zero there). */
+template <typename Scalar>
+void spreadColumn(const Scalar* previous, const Index* at, Index count, Scalar* column, Index begin, Index end) {
+  Index i = begin;
+  for (Index k = 0; k < count; ++k) {
+    for (; i < at[k]; ++i) column[i] = Scalar(0);
+    column[i++] = previous[k];
+  }
+  for (; i < end; ++i) column[i] = Scalar(0);
+}
+
 /** \internal The previous update matrix \a oldU (lower triangle, at.size() square) written into
   * \a U (m × m) at the new positions \a at of its rows: the rows and columns of the copies a
   * supernode gained below are zero, as for the previous matrix extended with identity. */
@@ -259,16 +272,12 @@ void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index 
   const Index oldM = Index(at.size());
   U.resize(m * m);  // (only the lower triangle is written: the upper one is never read)
   for (Index j = 0, b = 0; j < m; ++j) {
-    Scalar* column = U.data() + j * m;
-    Index i = j;
-    if (b < oldM && at[b] == j) {  // a previous column: its entries at their new rows, zero at the copies
-      for (Index a = b; a < oldM; ++a) {
-        for (; i < at[a]; ++i) column[i] = Scalar(0);
-        column[i++] = oldU[a + b * oldM];
-      }
+    if (b < oldM && at[b] == j) {  // a previous column (from its diagonal on); else a copy's, zero
+      spreadColumn(oldU + b + b * oldM, at.data() + b, oldM - b, U.data() + j * m, j, m);
       ++b;
+    } else {
+      std::fill(U.data() + j * m + j, U.data() + (j + 1) * m, Scalar(0));
     }
-    for (; i < m; ++i) column[i] = Scalar(0);
   }
 }
 
@@ -290,16 +299,8 @@ bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<
   }
   previousRowPositions(oldRows.data(), oldNr, node.rows.data(), newPosition, at);
   node.values.resize(nr, nc);
-  for (Index j = 0; j < nc; ++j) {  // each column in one pass: the previous entries, zero at the copies
-    Scalar* column = node.values.data() + j * nr;
-    const Scalar* previous = oldValues.data() + j * oldNr;
-    Index i = 0;
-    for (Index k = 0; k < oldNr; ++k) {
-      for (; i < at[k]; ++i) column[i] = Scalar(0);
-      column[i++] = previous[k];
-    }
-    for (; i < nr; ++i) column[i] = Scalar(0);
-  }
+  for (Index j = 0; j < nc; ++j)
+    spreadColumn(oldValues.data() + j * oldNr, at.data(), oldNr, node.values.data() + j * nr, Index(0), nr);
   for (Index k = nc; k < oldNr; ++k) at[k - nc] = at[k] - nc;  // (the rows below, from the supernode's first one below)
   at.resize(oldNr - nc);
   extendUpdateMatrix(oldU.data(), at, m, U);
