@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
 #include <vector>
 
 namespace Eigen {
@@ -72,15 +73,15 @@ struct FactorStructureBackup {
   std::vector<Index> firstCol, ncols;
   std::vector<std::vector<StorageIndex> > rows, parentPosition;  ///< dirty supernodes only
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > values;          ///< dirty supernodes only
-  std::vector<std::vector<Scalar> > cache;                        ///< dirty supernodes only
-  /** The previous call's cached update matrices, kept as buffers for this call's dirty supernodes:
-    * a buffer that is already allocated, touched and large enough needs neither the page faults
-    * nor the zeroing of a new one (the update matrices of an insertion and of the merge that
-    * undoes it are the same sizes, swapped). */
-  std::vector<std::vector<Scalar> > spareCache;
+  std::vector<UpdateBuffer<Scalar> > cache;                        ///< dirty supernodes only
+  /** The previous call's cached update matrices, kept as buffers for this call's dirty supernodes
+    * (by size): a buffer that is already allocated, touched and large enough needs neither the
+    * page faults nor the zeroing of a new one (the update matrices of an insertion and of the
+    * merge that undoes it are the same sizes, swapped). */
+  std::multimap<Index, UpdateBuffer<Scalar> > spareCache;
   /** The previous call's blocks of its dirty supernodes, kept likewise for blocks of the same
     * number of entries (a block's storage is reused only at the same size). */
-  std::vector<Matrix<Scalar, Dynamic, Dynamic> > spareValues;
+  std::multimap<Index, Matrix<Scalar, Dynamic, Dynamic> > spareValues;
 
   /** Frees what the call kept of the \a dirty supernodes (and of their children), so that
     * every per-supernode entry is empty between calls; their update matrices become the spare
@@ -91,16 +92,12 @@ struct FactorStructureBackup {
     spareValues.clear();
     for (Index s : dirty) {
       std::vector<StorageIndex>().swap(rows[s]);
-      if (values[s].size() > 0) spareValues.emplace_back(std::move(values[s]));
+      if (values[s].size() > 0) spareValues.emplace(values[s].size(), std::move(values[s]));
       values[s].resize(0, 0);
-      if (!cache[s].empty()) spareCache.emplace_back(std::move(cache[s]));
-      std::vector<Scalar>().swap(cache[s]);
+      if (!cache[s].empty()) spareCache.emplace(Index(cache[s].size()), std::move(cache[s]));
+      UpdateBuffer<Scalar>().swap(cache[s]);
       for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) std::vector<StorageIndex>().swap(parentPosition[c]);
     }
-    std::sort(spareCache.begin(), spareCache.end(),
-              [](const std::vector<Scalar>& a, const std::vector<Scalar>& b) { return a.size() < b.size(); });
-    std::sort(spareValues.begin(), spareValues.end(),
-              [](const Matrix<Scalar, Dynamic, Dynamic>& a, const Matrix<Scalar, Dynamic, Dynamic>& b) { return a.size() < b.size(); });
   }
 
   /** Gives \a block (empty) the storage of a spare block of exactly rows × cols entries, if there
@@ -108,10 +105,9 @@ struct FactorStructureBackup {
   void takeSpare(Index rows, Index cols, Matrix<Scalar, Dynamic, Dynamic>& block) {
     const Index size = rows * cols;
     if (size == 0) return;
-    auto it = std::lower_bound(spareValues.begin(), spareValues.end(), size,
-                               [](const Matrix<Scalar, Dynamic, Dynamic>& a, Index n) { return a.size() < n; });
-    if (it == spareValues.end() || it->size() != size) return;
-    block.swap(*it);
+    auto it = spareValues.find(size);
+    if (it == spareValues.end()) return;
+    block.swap(it->second);
     block.resize(rows, cols);  // (the same number of entries: no reallocation)
     spareValues.erase(it);
 #ifndef NDEBUG
@@ -122,12 +118,11 @@ struct FactorStructureBackup {
   /** Moves into \a buffer the smallest spare buffer of at least \a size scalars, if there is one
     * that holds at most twice as many (so that buffers do not grow from call to call; its values
     * are stale: the caller writes what it reads). */
-  void takeSpare(Index size, std::vector<Scalar>& buffer) {
+  void takeSpare(Index size, UpdateBuffer<Scalar>& buffer) {
     if (size == 0) return;
-    auto it = std::lower_bound(spareCache.begin(), spareCache.end(), size,
-                               [](const std::vector<Scalar>& a, Index n) { return Index(a.size()) < n; });
-    if (it == spareCache.end() || Index(it->capacity()) > 2 * size) return;
-    buffer.swap(*it);
+    auto it = spareCache.lower_bound(size);
+    if (it == spareCache.end() || Index(it->second.capacity()) > 2 * size) return;
+    buffer.swap(it->second);
     spareCache.erase(it);
 #ifndef NDEBUG  // stale values: poisoned, so that a test reading them fails
     std::fill(buffer.begin(), buffer.end(), Scalar(std::numeric_limits<typename NumTraits<Scalar>::Real>::quiet_NaN()));
@@ -137,8 +132,8 @@ struct FactorStructureBackup {
   /** Bytes held between calls (the spare buffers). */
   Index bytes() const {
     Index b = 0;
-    for (const auto& buffer : spareCache) b += Index(buffer.capacity() * sizeof(Scalar));
-    for (const auto& block : spareValues) b += Index(block.size() * sizeof(Scalar));
+    for (const auto& buffer : spareCache) b += Index(buffer.second.capacity() * sizeof(Scalar));
+    for (const auto& block : spareValues) b += Index(block.second.size() * sizeof(Scalar));
     return b;
   }
 };
@@ -150,7 +145,7 @@ struct FactorStructureBackup {
   * children of dirty supernodes. The assembly maps stay as they are (see remapAssemblyMaps()).
   * \a position: scratch by new permuted row, all -1 between uses. */
 template <typename Scalar, typename StorageIndex>
-void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::vector<Scalar> >& cache,
+void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<UpdateBuffer<Scalar> >& cache,
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
                    FactorStructureBackup<Scalar, StorageIndex>& backup, std::vector<StorageIndex>& position) {
   const Index ns = f.count();
@@ -216,7 +211,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::v
 /** \internal Undoes relabelFactor(): puts back the structure and the dirty supernodes' values
   * and cached update matrices (not the assembly maps: the caller rebuilds them). */
 template <typename Scalar, typename StorageIndex>
-void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<std::vector<Scalar> >& cache,
+void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<UpdateBuffer<Scalar> >& cache,
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
                    FactorStructureBackup<Scalar, StorageIndex>& backup) {
   const Index ns = f.count();

@@ -312,7 +312,7 @@ double foldSources(Supernode<Scalar, StorageIndex>& node, Dense& W, const std::v
 template <typename Scalar, typename StorageIndex>
 double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
                       const std::vector<Index>& dirty, const char* removed, UpdateWorkspace<Scalar>& ws) {
-  std::vector<std::vector<Scalar> >& cache = numeric.cache();
+  std::vector<UpdateBuffer<Scalar> >& cache = numeric.cache();
   typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
   std::vector<Dense>& carried = ws.carried;  // W passed from a supernode to its parent
   double flops = 0;

@@ -268,7 +268,7 @@ void spreadColumn(const Scalar* previous, const Index* at, Index count, Scalar* 
   * \a U (m × m) at the new positions \a at of its rows: the rows and columns of the copies a
   * supernode gained below are zero, as for the previous matrix extended with identity. */
 template <typename Scalar>
-void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index m, std::vector<Scalar>& U) {
+void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index m, UpdateBuffer<Scalar>& U) {
   const Index oldM = Index(at.size());
   U.resize(m * m);  // (only the lower triangle is written: the upper one is never read)
   for (Index j = 0, b = 0; j < m; ++j) {
@@ -288,8 +288,8 @@ void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index 
   * the update is reverted), else copied. */
 template <typename Scalar, typename StorageIndex>
 bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<StorageIndex>& oldRows,
-                       Matrix<Scalar, Dynamic, Dynamic>& oldValues, std::vector<Scalar>& oldU,
-                       const std::vector<StorageIndex>& newPosition, std::vector<Index>& at, std::vector<Scalar>& U) {
+                       Matrix<Scalar, Dynamic, Dynamic>& oldValues, UpdateBuffer<Scalar>& oldU,
+                       const std::vector<StorageIndex>& newPosition, std::vector<Index>& at, UpdateBuffer<Scalar>& U) {
   const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, oldNr = Index(oldRows.size());
   eigen_assert(oldValues.cols() == nc && oldValues.rows() == oldNr && "a folded supernode keeps its columns");
   if (oldNr == nr) {
@@ -388,7 +388,7 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
   std::vector<Index>& bound = ws.foldBound;
   for (const auto& b : boundary) bound[b.first] = b.second + 1;
   std::vector<Index> run, at;
-  std::vector<Scalar> previousU;
+  UpdateBuffer<Scalar> previousU;
   Index result = -1;
   auto flush = [&]() {
     if (run.empty()) return true;

@@ -18,7 +18,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <memory>
 #include <thread>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace Eigen {
@@ -90,6 +93,43 @@ SubtreeSchedule makeSchedule(const SupernodalFactor<Scalar, StorageIndex>& f, in
     if (isTop[s]) sched.top.push_back(s);
   return sched;
 }
+
+/** \internal An allocator whose value-initializing construct() (what std::vector::resize()
+  * calls for the new elements) leaves arithmetic scalars uninitialized instead of zeroing them.
+  * The cached update matrices are written before they are read (the front's rank-k product
+  * overwrites a lower triangle, or the caller zeroes it), so zeroing a new or grown one only
+  * cost a pass over its memory per refactored supernode. */
+template <typename T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    typedef UninitializedAllocator<U> other;
+  };
+  UninitializedAllocator() = default;
+  template <typename U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value) {
+    ::new (static_cast<void*>(p)) U;  // default-, not value-initialization
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <typename T, typename U>
+bool operator==(const UninitializedAllocator<T>&, const UninitializedAllocator<U>&) noexcept {
+  return true;
+}
+template <typename T, typename U>
+bool operator!=(const UninitializedAllocator<T>&, const UninitializedAllocator<U>&) noexcept {
+  return false;
+}
+
+/** \internal Storage of one cached update matrix (column-major, lower triangle meaningful); its
+  * new entries are not zeroed by resize(). */
+template <typename Scalar>
+using UpdateBuffer = std::vector<Scalar, UninitializedAllocator<Scalar> >;
 
 /** \internal A stack of update matrices (one per thread). Offsets, not pointers, so that it
   * may grow. */
@@ -231,7 +271,7 @@ class SupernodalNumeric {
 
   /** The cached update matrices (supernode s: below() × below(), lower triangle), for updates
     * that change them in place. */
-  std::vector<std::vector<Scalar> >& cache() { return m_cache; }
+  std::vector<UpdateBuffer<Scalar> >& cache() { return m_cache; }
 
   /** Defers the correction U_s += sign · W W^H (sign +1 or -1) of the cached update matrix of
     * supernode \a s (W: below() × r) until the cache is read; most such corrections are never
@@ -485,7 +525,7 @@ class SupernodalNumeric {
   SubtreeSchedule m_schedule;
   std::vector<Location> m_location;
   std::vector<UpdateStack<Scalar> > m_stacks;
-  std::vector<std::vector<Scalar> > m_cache;  ///< per supernode update matrix, when caching
+  std::vector<UpdateBuffer<Scalar> > m_cache;  ///< per supernode update matrix, when caching
   std::vector<std::vector<Correction> > m_pending;  ///< per supernode deferred corrections U += ±W W^H
   bool m_cacheUpdates = false, m_cacheValid = false;
   std::atomic<Index> m_failed{-1};

@@ -38,8 +38,8 @@ inline std::size_t plyTypeSize(PlyType type)
   * first if \a swap. */
 inline double plyDecode(unsigned char* bytes, PlyType type, bool swap)
 {
-  const std::size_t size = plyTypeSize(type);
-  if (swap) std::reverse(bytes, bytes + size);
+  const std::size_t size = (std::min)(plyTypeSize(type), std::size_t(8));  // (the bound tells GCC's
+  if (swap) std::reverse(bytes, bytes + size);                               // overflow check too)
   switch (type)
   {
     case PlyType::Int8: { std::int8_t v; std::memcpy(&v, bytes, 1); return double(v); }
