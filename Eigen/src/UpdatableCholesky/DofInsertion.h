@@ -92,8 +92,7 @@ struct FactorStructureBackup {
     spareValues.clear();
     for (Index s : dirty) {
       std::vector<StorageIndex>().swap(rows[s]);
-      if (values[s].size() > 0) spareValues.emplace(values[s].size(), std::move(values[s]));
-      values[s].resize(0, 0);
+      if (values[s].size() > 0) spareValues.emplace(values[s].size(), std::move(values[s]));  // (leaves it empty)
       if (!cache[s].empty()) spareCache.emplace(Index(cache[s].size()), std::move(cache[s]));
       UpdateBuffer<Scalar>().swap(cache[s]);
       for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) std::vector<StorageIndex>().swap(parentPosition[c]);

@@ -47,16 +47,6 @@ enum { UpdateChangeOversampling = 8 };
   * cuts (2.4-3x): the plan compares times, not flop counts. */
 enum { FoldFlopWeight = 3 };
 
-/** \internal Downdates the supernode's kept columns from row \a start on by the W columns
-  * [first, first+count): L L^H − W W^H = L' L'^H − W' W'^H with W' zero on the supernode's own
-  * rows, by hyperbolic rotations in rotationSweep()'s panels. \returns false (the block partly
-  * changed) when a pivot is lost. */
-template <typename Scalar, typename StorageIndex, typename Dense>
-bool downdateByHyperbolicRotations(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count,
-                                   Index start, const char* removed, double& flops) {
-  return rotationSweep<true>(node, W, first, count, start, removed, flops);
-}
-
 /** \internal Flops of splitting the change of an update matrix (m × m) of rank at most \a rank
   * into P P^H − N N^H (randomized range finder, check, small eigendecomposition). */
 inline double updateChangeFlops(double m, double rank) {
@@ -345,7 +335,8 @@ bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNume
   flops += foldSources(node, W[0], sources[0], removed);
   Index first = 0;
   for (const FoldSource& x : sources[1]) {
-    if (!downdateByHyperbolicRotations(node, W[1], first, x.count, x.start, removed, flops)) return false;
+    // the downdate L L^H − W W^H by hyperbolic rotations (false: a lost pivot, the block partly changed)
+    if (!rotationSweep</*Hyperbolic=*/true>(node, W[1], first, x.count, x.start, removed, flops)) return false;
     first += x.count;
   }
   if (m == 0) return true;

@@ -135,7 +135,7 @@ using UpdateBuffer = std::vector<Scalar, UninitializedAllocator<Scalar> >;
   * may grow. */
 template <typename Scalar>
 struct UpdateStack {
-  std::vector<Scalar> buffer;
+  UpdateBuffer<Scalar> buffer;  ///< (not zeroed when it grows: each update matrix is written before it is read)
   Index top = 0;
   std::vector<Scalar> front, update;  ///< scratch of a reduced front (kept rows and columns only)
   std::vector<Index> kept;            ///< its rows in the supernode
