@@ -473,6 +473,97 @@ TEST_CASE_TEMPLATE("gluing a cut back finds where it differs from the uncut matr
   CHECK(large[v] == 2);
 }
 
+TEST_CASE_TEMPLATE("the blocked downdate keeps L L^H - W W^H and agrees with hyperbolic rotations", Cfg, UC_CORE_CONFIGS) {
+  // The negative half of a fold (BlockedDowndate.h): a supernode's block L (rows x columns) and W
+  // (zero above its start row) become L' and W' with L' L'^H - W' W'^H = L L^H - W W^H, W' zero on
+  // the supernode's own rows; L' is the unique factor, so the rotations give it too. Too large a
+  // W loses a pivot, which is reported.
+  typedef typename Cfg::Scalar Scalar;
+  typedef typename Cfg::Dense Dense;
+  typedef typename Cfg::RealScalar Real;
+  typedef Eigen::internal::updatable_cholesky::Supernode<Scalar, typename Cfg::StorageIndex> Node;
+  const Real eps = Eigen::NumTraits<Real>::epsilon();
+  struct Shape { Index rows, cols, rank, start, removedColumn; };
+  for (const Shape& shape : {Shape{90, 40, 12, 0, -1}, Shape{150, 70, 9, 11, 30}, Shape{40, 40, 20, 3, -1}, Shape{75, 33, 40, 0, 5}}) {
+    CAPTURE(shape.rows);
+    Node node;
+    node.ncols = shape.cols;
+    for (Index i = 0; i < shape.rows; ++i) node.rows.push_back(typename Cfg::StorageIndex(i));
+    std::vector<char> removed(shape.rows, 0);
+    Dense L = Dense::Random(shape.rows, shape.cols);
+    for (Index j = 0; j < shape.cols; ++j) {
+      L.col(j).head(j).setZero();
+      L(j, j) = Scalar(Real(2 + shape.rows / 4));
+    }
+    Dense W = Dense::Random(shape.rows, shape.rank) * Scalar(Real(0.5));
+    W.topRows(shape.start).setZero();
+    if (shape.removedColumn >= 0) {  // a removed dof: a unit column, zero rows of W
+      const Index r = shape.removedColumn;
+      removed[r] = 1;
+      L.col(r).setZero();
+      L.row(r).setZero();
+      L(r, r) = Scalar(1);
+      W.row(r).setZero();
+    }
+    const Dense before = L * L.adjoint() - W * W.adjoint();
+    node.values = L;
+    Dense Wb = W;
+    double flops = 0;
+    REQUIRE(Eigen::internal::updatable_cholesky::downdateByBlockedReflections(node, Wb, 0, shape.rank, shape.start,
+                                                                               removed.data(), flops));
+    const Dense after = node.values * node.values.adjoint() - Wb * Wb.adjoint();
+    CHECK((after - before).norm() <= Real(100) * eps * before.norm());
+    CHECK(Wb.topRows(shape.cols).norm() == Real(0));
+    for (Index j = 0; j < shape.cols; ++j) {
+      CHECK(Eigen::numext::real(node.values(j, j)) > Real(0));
+      CHECK(Eigen::numext::imag(node.values(j, j)) == Real(0));
+      CHECK(node.values.col(j).head(j).norm() == Real(0));
+    }
+    if (shape.removedColumn >= 0) CHECK(node.values.col(shape.removedColumn) == L.col(shape.removedColumn));
+    Node rotated = node;
+    rotated.values = L;
+    Dense Wr = W;
+    REQUIRE(Eigen::internal::updatable_cholesky::rotationSweep<true>(rotated, Wr, 0, shape.rank, shape.start,
+                                                                     removed.data(), flops));
+    CHECK((rotated.values - node.values).norm() <= Real(100) * eps * L.norm());
+    CHECK(flops > 0);
+    // a downdate past positive definiteness: reported, not a NaN factor
+    node.values = L;
+    Dense big = W * Scalar(Real(4 * shape.rows));
+    CHECK_FALSE(Eigen::internal::updatable_cholesky::downdateByBlockedReflections(node, big, 0, shape.rank, shape.start,
+                                                                                  removed.data(), flops));
+  }
+}
+
+TEST_CASE_TEMPLATE("splitting an update-matrix change samples the likely rank, then the bound", Cfg, UC_CORE_CONFIGS) {
+  // updateMatrixChange() (LowRankTopUpdate.h): D = U' - U = P P^H - N N^H with as many columns as
+  // D's rank, whether the likely rank it starts from is right, too low (it samples again up to
+  // the bound) or the bound itself is too low (reported).
+  typedef typename Cfg::Scalar Scalar;
+  typedef typename Cfg::Dense Dense;
+  typedef typename Cfg::RealScalar Real;
+  const Index m = 120, positive = 5, negative = 9;
+  const Dense X = Dense::Random(m, m), Y = Dense::Random(m, positive), Z = Dense::Random(m, negative);
+  const Dense U = X * X.adjoint(), Unew = U + Y * Y.adjoint() - Z * Z.adjoint();
+  const Real tol = Real(1e4) * Eigen::NumTraits<Real>::epsilon() * U.norm();
+  for (Index likely : {Index(14), Index(2)}) {
+    CAPTURE(likely);
+    Dense P, N;
+    double flops = 0;
+    REQUIRE(Eigen::internal::updatable_cholesky::updateMatrixChange(Unew.data(), U.data(), m, likely, Index(20), P, N,
+                                                                      flops));
+    CHECK(P.cols() == positive);
+    CHECK(N.cols() == negative);
+    const Dense D = P * P.adjoint() - N * N.adjoint();
+    CHECK((D - (Unew - U)).norm() <= tol);
+    CHECK(flops > 0);
+  }
+  Dense P, N;
+  double flops = 0;
+  CHECK_FALSE(Eigen::internal::updatable_cholesky::updateMatrixChange(Unew.data(), U.data(), m, Index(2), Index(3), P, N,
+                                                                      flops));
+}
+
 TEST_CASE_TEMPLATE("insertDofs folds below a refactored root (the previous factor extended with identity)", Cfg,
                    uctest::d_int_col_lower_amd) {
   // a copy of the dof eliminated last changes a column of the root supernode, which is then

@@ -445,7 +445,7 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
     return f.colToSuper[a.col] < f.colToSuper[b.col];
   });
   position.resize(f.n, StorageIndex(-1));
-  std::vector<Index> source, target, order;
+  std::vector<Index> source, target, column, order;  // (column: of each entry, in the supernode)
   auto next = fresh.begin();
   for (Index s : dirty) {
     auto& node = f.nodes[s];
@@ -455,16 +455,23 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
     const Index oldNr = Index(oldRows.size()), oldFirst = backup.firstCol[s];
     source.clear();
     target.clear();
+    column.clear();
+    Index c = 0, base = 0;  // the old map lists its entries column by column: the column only grows
     for (Index k = 0; k < Index(node.assemblySource.size()); ++k) {
+      const Index t = node.assemblyTarget[k], u = t >= 0 ? t : ~t;
+      while (u >= base + oldNr) {
+        ++c;
+        base += oldNr;
+      }
       const Index src = posMap[node.assemblySource[k]];
       if (src < 0) continue;  // an entry that is gone
-      const Index t = node.assemblyTarget[k], u = t >= 0 ? t : ~t;
-      const Index c = u / oldNr, r = u - c * oldNr;
+      const Index r = u - base;
       const Index col = relabel.newPosition[oldFirst + c] - node.firstCol, row = position[relabel.newPosition[oldRows[r]]];
       eigen_assert(col >= 0 && row >= 0 && "remapAssemblyMaps: a surviving entry left the structure");
       const Index offset = col * nr + row;
       source.push_back(src);
       target.push_back(t >= 0 ? offset : ~offset);
+      column.push_back(col);
     }
     const Index kept = Index(source.size());  // (in column order: the old map was, and the relabeling keeps the columns' order)
     while (next != fresh.end() && f.colToSuper[next->col] < s) ++next;  // (cannot happen: fresh entries are dirty)
@@ -473,14 +480,14 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
       eigen_assert(position[next->row] >= 0 && "remapAssemblyMaps: a fresh entry outside the structure");
       source.push_back(next->source >= 0 ? next->source : ~next->source);
       target.push_back(next->source >= 0 ? offset : ~offset);
+      column.push_back(Index(next->col) - node.firstCol);
     }
     // the map lists the entries column by column, as buildAssemblyMaps() does (the Dirichlet
     // coupling finds a column's range by bisection): the fresh entries are sorted and merged
     // into the kept ones, which are in column order already
     order.resize(source.size());
     for (Index k = 0; k < Index(order.size()); ++k) order[k] = k;
-    auto columnOf = [nr](Index t) { return (t >= 0 ? t : ~t) / nr; };
-    auto byColumn = [&](Index a, Index b) { return columnOf(target[a]) < columnOf(target[b]); };
+    auto byColumn = [&](Index a, Index b) { return column[a] < column[b]; };
     eigen_assert(std::is_sorted(order.begin(), order.begin() + kept, byColumn) && "remapAssemblyMaps: kept entries out of column order");
     std::stable_sort(order.begin() + kept, order.end(), byColumn);
     std::inplace_merge(order.begin(), order.begin() + kept, order.end(), byColumn);

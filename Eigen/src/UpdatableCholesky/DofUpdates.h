@@ -52,7 +52,7 @@ struct UpdateWorkspace {
   std::vector<char> mark;                                   ///< dirty marks
   std::vector<Index> rank, local, first;                    ///< per-supernode ranks, first columns (cost model)
   std::vector<double> cost;                                 ///< per-supernode low-rank flops (cost model)
-  std::vector<Index> foldBound;  ///< 1 + rank bound of a refactored child of a folded supernode (insertions), else 0
+  std::vector<Index> foldBound;  ///< 1 + position of a refactored child of a folded supernode in the plan's boundary list (insertions), else 0
   std::vector<char> eligible;    ///< insertions' plan: a dirty supernode may be folded (zero for the others between calls)
   std::vector<Index> rankColumns, likelyRankColumns, rowRank;  ///< insertions' plan: per dirty supernode (zero between calls)
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carried;   ///< W passed to the parent

@@ -281,14 +281,12 @@ struct FoldSource {
   Index start, count, child;
 };
 
-/** \internal Folds the W columns of \a sources (in W in the order of the list, sorted by start)
-  * into the supernode's kept columns, one group of sources with close starts at a time, so that
-  * each fold touches only the columns from its group's start on. \returns the flops spent. */
-template <typename Scalar, typename StorageIndex, typename Dense>
-double foldSources(Supernode<Scalar, StorageIndex>& node, Dense& W, const std::vector<FoldSource>& sources,
-                   const char* removed) {
-  const Index nc = node.ncols;
-  double flops = 0;
+/** \internal Calls \a fold(first, count, start) for the W columns of \a sources (in W in the order
+  * of the list, sorted by start), one group of sources with close starts at a time, so that each
+  * fold touches only the supernode's columns (\a nc of them) from its group's start on.
+  * \returns false as soon as a fold does (true otherwise). */
+template <typename Fold>
+bool forEachSourceGroup(const std::vector<FoldSource>& sources, Index nc, Fold&& fold) {
   for (std::size_t g = 0, first = 0; g < sources.size();) {
     const Index start = sources[g].start;
     Index count = 0;
@@ -298,10 +296,23 @@ double foldSources(Supernode<Scalar, StorageIndex>& node, Dense& W, const std::v
       if (h > g && !close && count >= Index(BlockedFoldMinRank)) break;
       count += sources[h].count;
     }
-    flops += foldIntoColumns(node, W, Index(first), count, start, removed);
+    if (!fold(Index(first), count, start)) return false;
     first += std::size_t(count);
     g = h;
   }
+  return true;
+}
+
+/** \internal Folds the W columns of \a sources (in W in the order of the list, sorted by start)
+  * into the supernode's kept columns, by groups (forEachSourceGroup()). \returns the flops spent. */
+template <typename Scalar, typename StorageIndex, typename Dense>
+double foldSources(Supernode<Scalar, StorageIndex>& node, Dense& W, const std::vector<FoldSource>& sources,
+                   const char* removed) {
+  double flops = 0;
+  forEachSourceGroup(sources, node.ncols, [&](Index first, Index count, Index start) {
+    flops += foldIntoColumns(node, W, first, count, start, removed);
+    return true;
+  });
   return flops;
 }
 

@@ -15,9 +15,11 @@
 // rank at most the copies below, plus two per copy row of the child (the unit transform that
 // moves a copy row back onto its origin); a merge removes them again. Each dof where the cut
 // does not glue back adds one (gluingMismatches()). The change is split into P P^H − N N^H (a
-// sampled range and an eigendecomposition of the small core; eigenvalues at rounding level are
-// dropped) and folded: first the update P (Givens rotations or blocked LQ, as for removals),
-// then the downdate N (hyperbolic rotations), along the paths to the roots. The cached update
+// range sampled with the likely rank, again with the bound if that misses, and an
+// eigendecomposition of the small core; eigenvalues at rounding level are dropped) and folded:
+// first the update P (Givens rotations or blocked LQ, as for removals), then the downdate N
+// (blocked hyperbolic reflections, BlockedDowndate.h, or hyperbolic rotations for small ranks),
+// along the paths to the roots. The cached update
 // matrices of the folded supernodes get the matching ± corrections, deferred. Each folded
 // supernode costs ~4 · rank · rows · columns instead of its refactorization and its children's
 // extend-adds. The folded supernodes need not be closed under parents: a cut through the root
@@ -42,10 +44,20 @@ namespace updatable_cholesky {
 
 /** \internal Random vectors sampled beyond the rank bound of an update-matrix change. */
 enum { UpdateChangeOversampling = 8 };
-/** \internal Time per flop of the folds and of the split of an update-matrix change (rotations,
-  * small eigenproblems) relative to the BLAS-3 flops of a refactorization, as measured on igea
-  * cuts (2.4-3x): the plan compares times, not flop counts. */
-enum { FoldFlopWeight = 3 };
+/** \internal Time per flop of the folds (blocked LQ and reflections, rotations for small ranks,
+  * with the copies of the previous block) relative to the BLAS-3 flops of a refactorization, as
+  * measured on igea and bunny cuts (2-3.5x; more for small supernodes): the plan compares times,
+  * not flop counts. */
+constexpr double FoldFlopWeight = 2.5;
+/** \internal The same for the split of an update-matrix change (matrix products, a thin QR and a
+  * small eigenproblem: 1.1x for m ≈ 250, more for small ones). */
+constexpr double SplitFlopWeight = 1.5;
+
+/** \internal A refactored supernode whose parent is folded: the change of its update matrix is
+  * split with at most \a bound columns, \a likely expected (updateMatrixChange()). */
+struct FoldBoundary {
+  Index supernode, bound, likely;
+};
 
 /** \internal Flops of splitting the change of an update matrix (m × m) of rank at most \a rank
   * into P P^H − N N^H (randomized range finder, check, small eigendecomposition). */
@@ -56,12 +68,14 @@ inline double updateChangeFlops(double m, double rank) {
 
 /** \internal Splits the change D = U' − U of a cached update matrix (m × m, lower triangles,
   * column-major) into P P^H − N N^H with as few columns as its numerical rank, which is at most
-  * \a rankBound (see foldPlan(); a wrong bound is caught by the check below). The range of D is sampled with rankBound + a few random
-  * vectors (deterministic signs), D is checked to lie in that range, and the small projected
-  * matrix is diagonalized; eigenvalues at rounding level are dropped. \returns false when D is
-  * not captured (the bound did not hold); \a flops gets the work. */
+  * \a rankBound (see foldPlan(); a wrong bound is caught by the check below) and is expected to
+  * be about \a likelyRank. The range of D is sampled with likelyRank + a few random vectors
+  * (deterministic signs) and D is checked to lie in that range; when it does not, it is sampled
+  * again with rankBound + a few. The small projected matrix is then diagonalized; eigenvalues at
+  * rounding level are dropped. \returns false when D is not captured (the bound did not hold);
+  * \a flops gets the work. */
 template <typename Scalar>
-bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index rankBound,
+bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index likelyRank, Index rankBound,
                         Matrix<Scalar, Dynamic, Dynamic>& P, Matrix<Scalar, Dynamic, Dynamic>& N, double& flops) {
   typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
   typedef typename NumTraits<Scalar>::Real RealScalar;
@@ -78,12 +92,16 @@ bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index r
   for (Index j = 0; j < m; ++j) D(j, j) = Scalar(numext::real(D(j, j)));
   const RealScalar scale = numext::sqrt(scale2);
   const RealScalar dropped = RealScalar(64) * NumTraits<RealScalar>::epsilon() * scale;
-  const Index k = (std::min)(m, rankBound + Index(UpdateChangeOversampling));
-  flops += updateChangeFlops(double(m), double(rankBound));
+  const Index kMax = (std::min)(m, rankBound + Index(UpdateChangeOversampling));
+  Index k = (std::min)(kMax, (std::min)(likelyRank, rankBound) + Index(UpdateChangeOversampling));
   Dense Q, B;
-  if (2 * k >= m) {  // small or not low-rank enough: diagonalize D itself
-    B.swap(D);
-  } else {
+  while (true) {
+    flops += updateChangeFlops(double(m), double(k - Index(UpdateChangeOversampling)));
+    if (2 * k >= m) {  // small or not low-rank enough: diagonalize D itself
+      Q.resize(0, 0);
+      B.swap(D);
+      break;
+    }
     Dense omega(m, k);
     std::uint64_t state = 0x9E3779B97F4A7C15ull;
     for (Index j = 0; j < k; ++j)
@@ -97,8 +115,11 @@ bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index r
     const Dense Z = D * Q;
     B.noalias() = Q.adjoint() * Z;
     const Dense QB = Q * B;
-    D.noalias() -= QB * Q.adjoint();  // what the range of Q misses
-    if (!(D.norm() <= RealScalar(1000) * NumTraits<RealScalar>::epsilon() * scale)) return false;
+    Dense missed = D;
+    missed.noalias() -= QB * Q.adjoint();  // what the range of Q misses
+    if (missed.norm() <= RealScalar(1000) * NumTraits<RealScalar>::epsilon() * scale) break;
+    if (k == kMax) return false;
+    k = kMax;  // the likely rank was too low: sample up to the bound
   }
   SelfAdjointEigenSolver<Dense> eig(B);
   const auto& lambda = eig.eigenvalues();
@@ -146,7 +167,7 @@ double foldPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vect
                 const std::vector<char>& eligible, const std::vector<Index>& rankColumns,
                 const std::vector<Index>& likelyRankColumns, const std::vector<Index>& rowRank, const char* removed,
                 bool force, std::vector<char>& folded, std::vector<Index>& bottom, std::vector<Index>& top,
-                std::vector<std::pair<Index, Index> >& boundary, UpdateWorkspace<Scalar>& ws) {
+                std::vector<FoldBoundary>& boundary, UpdateWorkspace<Scalar>& ws) {
   const Index count = Index(dirty.size());
   const double never = std::numeric_limits<double>::infinity();
   // per position in dirty: the subtree's cost when this supernode is refactored / folded
@@ -168,7 +189,7 @@ double foldPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vect
     refactor[k] = frontFlops(node, removed) + underRefactor[k];
     rankBoundary[k] = (std::min)(m, rankBelow[k] + double(rowRank[s]));
     likelyBoundary[k] = (std::min)(m, likelyBelow[k] + double(rowRank[s]));
-    split[k] = FoldFlopWeight * updateChangeFlops(m, rankBoundary[k]);
+    split[k] = SplitFlopWeight * updateChangeFlops(m, likelyBoundary[k]);
     rankOut[k] = likelyBoundary[k];
     if (eligible[s]) {
       fold[k] = FoldFlopWeight * foldFlops(rankIn[k], nr, nc, double(start[k])) + underFold[k];
@@ -216,7 +237,7 @@ double foldPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vect
       total += frontFlops(node, removed);
       if (parentFolded) {
         total += split[k];
-        boundary.emplace_back(s, Index(rankBoundary[k]));
+        boundary.push_back(FoldBoundary{s, Index(rankBoundary[k]), Index(likelyBoundary[k])});
       }
     }
   }
@@ -333,12 +354,8 @@ bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNume
     }
   }
   flops += foldSources(node, W[0], sources[0], removed);
-  Index first = 0;
-  for (const FoldSource& x : sources[1]) {
-    // the downdate L L^H − W W^H by hyperbolic rotations (false: a lost pivot, the block partly changed)
-    if (!rotationSweep</*Hyperbolic=*/true>(node, W[1], first, x.count, x.start, removed, flops)) return false;
-    first += x.count;
-  }
+  // the downdate L L^H − W W^H (false: a lost pivot, the block partly changed)
+  if (!downdateSources(node, W[1], sources[1], removed, flops)) return false;
   if (m == 0) return true;
   for (int sign = 0; sign < 2; ++sign) {  // what is left lives on the rows below
     if (W[sign].cols() == 0) continue;
@@ -373,11 +390,11 @@ bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNume
 template <typename Scalar, typename StorageIndex, typename Backup, typename Refactor>
 Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
                       const std::vector<Index>& dirty, const std::vector<char>& folded,
-                      const std::vector<std::pair<Index, Index> >& boundary, Backup& backup, std::vector<Index>& taken,
+                      const std::vector<FoldBoundary>& boundary, Backup& backup, std::vector<Index>& taken,
                       const std::vector<StorageIndex>& newPosition, const char* removed, UpdateWorkspace<Scalar>& ws,
                       Refactor&& refactor, double& flops) {
-  std::vector<Index>& bound = ws.foldBound;
-  for (const auto& b : boundary) bound[b.first] = b.second + 1;
+  std::vector<Index>& bound = ws.foldBound;  // 1 + position in boundary
+  for (std::size_t k = 0; k < boundary.size(); ++k) bound[boundary[k].supernode] = Index(k) + 1;
   std::vector<Index> run, at;
   UpdateBuffer<Scalar> previousU;
   Index result = -1;
@@ -406,7 +423,8 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
         extendUpdateMatrix(oldU, at, m, previousU);
         oldU = previousU.data();
       }
-      captured = updateMatrixChange(numeric.cache()[c].data(), oldU, m, bound[c] - 1, ws.carried[c],
+      const FoldBoundary& b = boundary[bound[c] - 1];
+      captured = updateMatrixChange(numeric.cache()[c].data(), oldU, m, b.likely, b.bound, ws.carried[c],
                                     ws.carriedNegative[c], flops);
     }
     if (captured) {
@@ -422,7 +440,7 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
     }
   }
   if (result == -1) flush();
-  for (const auto& b : boundary) bound[b.first] = 0;
+  for (const FoldBoundary& b : boundary) bound[b.supernode] = 0;
   if (result != -1)
     for (Index s : dirty) ws.carried[s] = ws.carriedNegative[s] = Matrix<Scalar, Dynamic, Dynamic>();
   return result;

@@ -1187,7 +1187,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   const double dirtyFlops = supernodeFlops(m_factor, dirty, removedFlags);
   const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
   std::vector<Index> bottom, top;
-  std::vector<std::pair<Index, Index> > boundary;
+  std::vector<internal::updatable_cholesky::FoldBoundary> boundary;
   std::vector<char> folded;  // by supernode: folded rather than refactored (route Mixed)
   std::vector<Index> taken;  // folded supernodes whose previous block and update matrix left the backup
   double plannedFlops = dirtyFlops;
@@ -1218,24 +1218,36 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     // a fold saves at most the refactorization of the supernodes it may fold: below a fiftieth
     // of the dirty work, the plan (and the compare it needs) is not worth making
     if (force || 50 * eligibleFlops >= dirtyFlops) {
-      const std::vector<StorageIndex>& mismatched = gluingMismatchesOf(change);  // (flags in diff.mismatch)
-      for (Index s : dirty) {
+      for (Index s : dirty) {  // the copies and merged dofs: a lower bound of the ranks
         const auto& node = m_factor.nodes[s];
-        for (Index c = node.firstCol; c < node.firstCol + node.ncols; ++c) {
-          const StorageIndex x = m_Pinv.indices()[c], o = change.oldOfNew[x];
-          rankColumns[s] += (o < 0) + (diff.mismatch[x] > 0);
-          likelyRankColumns[s] += (o < 0) + (diff.mismatch[x] > 1);
-        }
+        for (Index c = node.firstCol; c < node.firstCol + node.ncols; ++c)
+          rankColumns[s] += change.oldOfNew[m_Pinv.indices()[c]] < 0;
         if (!change.merging)
           for (Index k = node.ncols; k < node.nrows(); ++k)
             rowRank[s] += 2 * (change.oldOfNew[m_Pinv.indices()[node.rows[k]]] < 0);
         rankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);  // merged away
-        likelyRankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);
+        likelyRankColumns[s] = rankColumns[s];
       }
-      for (StorageIndex x : mismatched) diff.mismatch[x] = 0;
+      // every cost of a plan grows with the ranks: when the plan on that lower bound saves
+      // nothing, neither does the one with the mismatches, and the compare is not made
       folded.assign(ns, 0);
-      const double planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
-                                      m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
+      double planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
+                                m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
+      if (force || (!top.empty() && planned < dirtyFlops)) {
+        const std::vector<StorageIndex>& mismatched = gluingMismatchesOf(change);  // (flags in diff.mismatch)
+        for (Index s : dirty) {
+          const auto& node = m_factor.nodes[s];
+          for (Index c = node.firstCol; c < node.firstCol + node.ncols; ++c) {
+            const StorageIndex x = m_Pinv.indices()[c];
+            rankColumns[s] += diff.mismatch[x] > 0;
+            likelyRankColumns[s] += diff.mismatch[x] > 1;
+          }
+        }
+        for (StorageIndex x : mismatched) diff.mismatch[x] = 0;
+        for (Index s : dirty) folded[s] = 0;
+        planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
+                           m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
+      }
       if (top.empty() || (!force && planned >= dirtyFlops)) {
         top.clear();
         bottom.clear();
