@@ -539,7 +539,6 @@ TEST_CASE_TEMPLATE("splitting an update-matrix change samples the likely rank, t
   // updateMatrixChange() (LowRankTopUpdate.h): D = U' - U = P P^H - N N^H with as many columns as
   // D's rank, whether the likely rank it starts from is right, too low (it samples again up to
   // the bound) or the bound itself is too low (reported).
-  typedef typename Cfg::Scalar Scalar;
   typedef typename Cfg::Dense Dense;
   typedef typename Cfg::RealScalar Real;
   const Index m = 120, positive = 5, negative = 9;
