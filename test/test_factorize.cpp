@@ -3,7 +3,8 @@
 // random shapes, storage forms and shifts (fuzzing; the primary configuration also draws relaxation
 // settings and thread counts); then one analyzePattern followed by many factorize() calls with new
 // values on the same pattern, compared with a fresh compute() (which must give the same factor bit
-// for bit) and with SimplicialLLT.
+// for bit) and with SimplicialLLT; and the dense kernels' blocked paths (potrf by halves, the
+// triangular solve by panels) on their own.
 #include "test_checks.h"
 
 using namespace uctest;
@@ -178,5 +179,41 @@ TEST_CASE_TEMPLATE("the same object computes matrices of different patterns and 
     twoStep.factorize(input);
     CHECK(twoStep.info() == Eigen::Success);
     CHECK(sameFactorBitwise<Cfg>(llt, twoStep));
+  }
+}
+
+TEST_CASE_TEMPLATE("dense kernels: potrf by halves and the triangular solve by panels", Cfg, UC_CORE_CONFIGS) {
+  // potrf() splits blocks above PotrfLeafColumns columns in two (with BLAS), trsmRightLowerAdjoint()
+  // goes by panels of TrsmPanelColumns columns: the factor reproduces the block, a bad pivot in
+  // either half (negative or NaN) is reported at its own column, and the panel solve agrees with
+  // Eigen's triangular solve.
+  typedef typename Cfg::Scalar Scalar;
+  typedef typename Cfg::RealScalar Real;
+  typedef Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> Dense;
+  namespace uc = Eigen::internal::updatable_cholesky;
+  const Real eps = Eigen::NumTraits<Real>::epsilon();
+  for (Index n : {Index(100), Index(130), Index(300)}) {
+    CAPTURE(n);
+    const Dense B = Dense::Random(n, n);
+    Dense A = B * B.adjoint();
+    A.diagonal().array() += Scalar(Real(n));
+    Dense L = A;
+    REQUIRE(uc::potrf(n, L.data(), n) == -1);
+    L = L.template triangularView<Eigen::Lower>();
+    CHECK((L * L.adjoint() - A).norm() <= Real(10) * Real(n) * eps * A.norm());
+    for (Index bad : {Index(3), n / 2 + 7, n - 2}) {  // (first half, second half, last leaf)
+      CAPTURE(bad);
+      Dense C = A;
+      C(bad, bad) = Scalar(Real(-1));
+      CHECK(uc::potrf(n, C.data(), n) == bad);
+      C = A;
+      C(bad, bad) = Scalar(std::numeric_limits<Real>::quiet_NaN());
+      CHECK(uc::potrf(n, C.data(), n) == bad);
+    }
+    const Index m = 70;
+    const Dense R = Dense::Random(m, n);
+    Dense X = R;
+    uc::trsmRightLowerAdjoint(m, n, L.data(), n, X.data(), m);
+    CHECK((X * L.adjoint() - R).norm() <= Real(10) * Real(n) * eps * R.norm() * (L.norm() / L.diagonal().cwiseAbs().minCoeff()));
   }
 }
