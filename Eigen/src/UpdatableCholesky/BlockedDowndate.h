@@ -20,6 +20,7 @@
 #ifndef EIGEN_UPDATABLE_CHOLESKY_BLOCKED_DOWNDATE_H
 #define EIGEN_UPDATABLE_CHOLESKY_BLOCKED_DOWNDATE_H
 
+#include <algorithm>
 #include <vector>
 
 namespace Eigen {
@@ -90,9 +91,10 @@ bool downdateByBlockedReflections(Supernode<Scalar, StorageIndex>& node, Dense& 
       flops += 4.0 * double(count + 1) * double(j1 - k) + 2.0 * double(count) * double(kk);
     }
     // 2. ... applied to the rows below the panel at once: Y := Y − (Y J U) T U^H for
-    //    Y = [L(rows, panel) N(rows, :)], U = [diag(d); V]
+    //    Y = [L(rows, panel) N(rows, :)], U = [diag(d); V] (nothing to do when W was zero on
+    //    the panel's rows)
     const Index rows = nr - j1;
-    if (rows > 0) {
+    if (rows > 0 && std::find(active.begin(), active.begin() + pb, char(1)) != active.begin() + pb) {
       BlockMap Lp(L + j0 * nr + j1, rows, pb, OuterStride<>(nr));
       BlockMap Nb(N + j1, rows, count, OuterStride<>(nr));
       auto YJU = M.topRows(rows).leftCols(pb);

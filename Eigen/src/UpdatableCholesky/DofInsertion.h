@@ -162,13 +162,9 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
     backup.ncols[s] = node.ncols;
     if (!mark[s]) {  // (rows are increasing: those before the first moved column stay)
       const Index nr = node.nrows();
-      if (nr == 0 || Index(node.rows[nr - 1]) < relabel.firstMoved) {
-        node.firstCol = node.ncols > 0 ? Index(node.rows[0]) : 0;
-        continue;
-      }
       StorageIndex* EIGEN_RESTRICT rows = node.rows.data();
       const StorageIndex* EIGEN_RESTRICT to = relabel.newPosition.data();
-      const Index from = Index(rows[0]) >= relabel.firstMoved
+      const Index from = nr > 0 && Index(rows[0]) >= relabel.firstMoved
                              ? Index(0)
                              : Index(std::lower_bound(rows, rows + nr, StorageIndex(relabel.firstMoved)) - rows);
       for (Index k = from; k < nr; ++k) rows[k] = to[rows[k]];

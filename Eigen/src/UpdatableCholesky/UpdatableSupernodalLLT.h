@@ -1229,10 +1229,13 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         likelyRankColumns[s] = rankColumns[s];
       }
       // every cost of a plan grows with the ranks: when the plan on that lower bound saves
-      // nothing, neither does the one with the mismatches, and the compare is not made
+      // nothing, neither does the one with the mismatches, and the compare is not made (a
+      // forced route makes the plan in any case)
       folded.assign(ns, 0);
-      double planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
-                                m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
+      double planned = 0;
+      if (!force)
+        planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
+                           m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
       if (force || (!top.empty() && planned < dirtyFlops)) {
         const std::vector<StorageIndex>& mismatched = gluingMismatchesOf(change);  // (flags in diff.mismatch)
         for (Index s : dirty) {
