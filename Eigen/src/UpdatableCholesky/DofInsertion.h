@@ -83,19 +83,21 @@ struct FactorStructureBackup {
     * number of entries (a block's storage is reused only at the same size). */
   std::multimap<Index, Matrix<Scalar, Dynamic, Dynamic> > spareValues;
 
-  /** Frees what the call kept of the \a dirty supernodes (and of their children), so that
-    * every per-supernode entry is empty between calls; their update matrices become the spare
-    * buffers of the next call (those the call did not use are freed). */
+  /** Empties what the call kept of the \a dirty supernodes (and of their children), so that
+    * every per-supernode entry is empty between calls: the row lists keep their storage (the
+    * next call's dirty supernodes swap it in for their new rows, with no allocation); the
+    * update matrices and blocks become the spare buffers of the next call (those the call did
+    * not use are freed). */
   template <typename Factor>
   void release(const Factor& f, const std::vector<Index>& dirty) {
     spareCache.clear();
     spareValues.clear();
     for (Index s : dirty) {
-      std::vector<StorageIndex>().swap(rows[s]);
+      rows[s].clear();
       if (values[s].size() > 0) spareValues.emplace(values[s].size(), std::move(values[s]));  // (leaves it empty)
       if (!cache[s].empty()) spareCache.emplace(Index(cache[s].size()), std::move(cache[s]));
       UpdateBuffer<Scalar>().swap(cache[s]);
-      for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) std::vector<StorageIndex>().swap(parentPosition[c]);
+      for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) parentPosition[c].clear();
     }
   }
 
@@ -128,11 +130,13 @@ struct FactorStructureBackup {
 #endif
   }
 
-  /** Bytes held between calls (the spare buffers). */
+  /** Bytes held between calls (the spare buffers and the storage of the emptied row lists). */
   Index bytes() const {
     Index b = 0;
     for (const auto& buffer : spareCache) b += Index(buffer.second.capacity() * sizeof(Scalar));
     for (const auto& block : spareValues) b += Index(block.second.size() * sizeof(Scalar));
+    for (const auto& list : rows) b += Index(list.capacity() * sizeof(StorageIndex));
+    for (const auto& list : parentPosition) b += Index(list.capacity() * sizeof(StorageIndex));
     return b;
   }
 };
@@ -152,7 +156,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
   backup.colToSuper.swap(f.colToSuper);
   backup.firstCol.resize(ns);
   backup.ncols.resize(ns);
-  backup.rows.resize(ns);  // (all empty: the previous call released them)
+  backup.rows.resize(ns);  // (all empty, some with storage: the previous call released them)
   backup.parentPosition.resize(ns);
   backup.values.resize(ns);
   backup.cache.resize(ns);
@@ -174,6 +178,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
       if (Index(cache.size()) == ns) backup.cache[s].swap(cache[s]);
       const auto& old = backup.rows[s];
       Index columns = 0;
+      node.rows.reserve(old.size() + (old.size() >> 2));  // (copies make it longer)
       for (Index k = 0; k < Index(old.size()); ++k) {
         const StorageIndex r = old[k], p = relabel.newPosition[r];
         if (p < 0) continue;

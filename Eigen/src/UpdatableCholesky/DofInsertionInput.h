@@ -408,14 +408,14 @@ template <typename Scalar, typename StorageIndex>
 std::vector<Index> ownersOfRewrites(const SupernodalFactor<Scalar, StorageIndex>& f,
                                     const InputStore<Scalar, StorageIndex>& store,
                                     const InputDiff<Scalar, StorageIndex>& d, const StorageIndex* perm) {
+  std::vector<char> owns(f.count(), 0);  // (flags, not a sort: rewrites are many, owners few)
+  for (const auto& r : d.rewrites) {
+    const Index pi = perm[r.outer];
+    for (Index q = r.begin; q < r.end; ++q) owns[f.colToSuper[(std::min)(pi, Index(perm[store.inner[q]]))]] = 1;
+  }
   std::vector<Index> owners;
-  for (const auto& r : d.rewrites)
-    for (Index q = r.begin; q < r.end; ++q) {
-      const Index pi = perm[r.outer], pj = perm[store.inner[q]];
-      owners.push_back(f.colToSuper[(std::min)(pi, pj)]);
-    }
-  std::sort(owners.begin(), owners.end());
-  owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
+  for (Index s = 0; s < f.count(); ++s)
+    if (owns[s]) owners.push_back(s);
   return owners;
 }
 
@@ -441,11 +441,12 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
     for (Index s : *movedOwners) remapClean(s);
   else
     for (Index s = 0; s < f.count(); ++s) remapClean(s);
-  std::sort(fresh.begin(), fresh.end(), [&](const FreshEntry<StorageIndex>& a, const FreshEntry<StorageIndex>& b) {
-    return f.colToSuper[a.col] < f.colToSuper[b.col];
+  // (a supernode's columns are contiguous: in column order, the fresh entries come supernode by
+  // supernode; the source breaks ties so that the map does not depend on the sort)
+  std::sort(fresh.begin(), fresh.end(), [](const FreshEntry<StorageIndex>& a, const FreshEntry<StorageIndex>& b) {
+    return a.col != b.col ? a.col < b.col : a.source < b.source;
   });
   position.resize(f.n, StorageIndex(-1));
-  std::vector<Index> source, target, column, order;  // (column: of each entry, in the supernode)
   auto next = fresh.begin();
   for (Index s : dirty) {
     auto& node = f.nodes[s];
@@ -453,50 +454,59 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
     for (Index k = 0; k < nr; ++k) position[node.rows[k]] = StorageIndex(k);
     const auto& oldRows = backup.rows[s];
     const Index oldNr = Index(oldRows.size()), oldFirst = backup.firstCol[s];
-    source.clear();
-    target.clear();
-    column.clear();
-    Index c = 0, base = 0;  // the old map lists its entries column by column: the column only grows
-    for (Index k = 0; k < Index(node.assemblySource.size()); ++k) {
-      const Index t = node.assemblyTarget[k], u = t >= 0 ? t : ~t;
+    std::vector<Index>&source = node.assemblySource, &target = node.assemblyTarget;
+    // the surviving entries, renumbered in place (the map shrinks: entry k goes to kept <= k)
+    Index c = 0, base = 0, kept = 0;  // the old map lists its entries column by column: the column only grows
+    const Index na = Index(source.size());
+    for (Index k = 0; k < na; ++k) {
+      // (posMap is read at scattered store positions: the loads miss the cache, fetched ahead)
+      if (k + AssemblyPrefetchDistance < na) internal::prefetch(posMap.data() + source[k + AssemblyPrefetchDistance]);
+      const Index t = target[k], u = t >= 0 ? t : ~t;
       while (u >= base + oldNr) {
         ++c;
         base += oldNr;
       }
-      const Index src = posMap[node.assemblySource[k]];
+      const Index src = posMap[source[k]];
       if (src < 0) continue;  // an entry that is gone
       const Index r = u - base;
       const Index col = relabel.newPosition[oldFirst + c] - node.firstCol, row = position[relabel.newPosition[oldRows[r]]];
       eigen_assert(col >= 0 && row >= 0 && "remapAssemblyMaps: a surviving entry left the structure");
       const Index offset = col * nr + row;
-      source.push_back(src);
-      target.push_back(t >= 0 ? offset : ~offset);
-      column.push_back(col);
+      source[kept] = src;
+      target[kept] = t >= 0 ? offset : ~offset;
+      ++kept;
     }
-    const Index kept = Index(source.size());  // (in column order: the old map was, and the relabeling keeps the columns' order)
+    // (in column order: the old map was, and the relabeling keeps the columns' order)
     while (next != fresh.end() && f.colToSuper[next->col] < s) ++next;  // (cannot happen: fresh entries are dirty)
-    for (; next != fresh.end() && f.colToSuper[next->col] == s; ++next) {
-      const Index offset = (Index(next->col) - node.firstCol) * nr + position[next->row];
-      eigen_assert(position[next->row] >= 0 && "remapAssemblyMaps: a fresh entry outside the structure");
-      source.push_back(next->source >= 0 ? next->source : ~next->source);
-      target.push_back(next->source >= 0 ? offset : ~offset);
-      column.push_back(Index(next->col) - node.firstCol);
-    }
+    auto freshEnd = next;
+    while (freshEnd != fresh.end() && f.colToSuper[freshEnd->col] == s) ++freshEnd;
+    const Index total = kept + Index(freshEnd - next);
+    source.resize(total);
+    target.resize(total);
     // the map lists the entries column by column, as buildAssemblyMaps() does (the Dirichlet
-    // coupling finds a column's range by bisection): the fresh entries are sorted and merged
-    // into the kept ones, which are in column order already
-    order.resize(source.size());
-    for (Index k = 0; k < Index(order.size()); ++k) order[k] = k;
-    auto byColumn = [&](Index a, Index b) { return column[a] < column[b]; };
-    eigen_assert(std::is_sorted(order.begin(), order.begin() + kept, byColumn) && "remapAssemblyMaps: kept entries out of column order");
-    std::stable_sort(order.begin() + kept, order.end(), byColumn);
-    std::inplace_merge(order.begin(), order.begin() + kept, order.end(), byColumn);
-    node.assemblySource.resize(order.size());
-    node.assemblyTarget.resize(order.size());
-    for (Index k = 0; k < Index(order.size()); ++k) {
-      node.assemblySource[k] = source[order[k]];
-      node.assemblyTarget[k] = target[order[k]];
+    // coupling finds a column's range by bisection): the fresh entries, in column order, are
+    // merged into the kept ones from the back
+    Index out = total, keptLeft = kept;
+    for (auto e = freshEnd; e != next;) {
+      const auto& fe = *(e - 1);
+      const Index col = Index(fe.col) - node.firstCol;
+      const Index t = keptLeft > 0 ? target[keptLeft - 1] : 0;
+      if (keptLeft > 0 && (t >= 0 ? t : ~t) >= (col + 1) * nr) {  // (the kept entry's column is after col)
+        --out;
+        --keptLeft;
+        source[out] = source[keptLeft];
+        target[out] = target[keptLeft];
+        continue;
+      }
+      eigen_assert(position[fe.row] >= 0 && "remapAssemblyMaps: a fresh entry outside the structure");
+      const Index offset = col * nr + position[fe.row];
+      --out;
+      source[out] = fe.source >= 0 ? fe.source : ~fe.source;
+      target[out] = fe.source >= 0 ? offset : ~offset;
+      --e;
     }
+    eigen_assert(out == keptLeft);
+    next = freshEnd;
     for (Index k = 0; k < nr; ++k) position[node.rows[k]] = StorageIndex(-1);
   }
 }

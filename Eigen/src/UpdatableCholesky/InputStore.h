@@ -133,8 +133,8 @@ struct TransposedPattern {
   };
   std::vector<Rewrite> rewrites;
   Index oldPool = 0, oldSize = 0, oldLive = 0;  ///< the extent before beginRewrites()
-  std::vector<StorageIndex> targets, list;      ///< scratch of followInPlaceRewrite()
-  std::vector<std::pair<StorageIndex, StorageIndex> > pairs;  ///< scratch of followInPlaceRewrite()
+  std::vector<StorageIndex> targets, list, sources;  ///< scratch of followInPlaceRewrite()
+  std::vector<Index> slot;  ///< scratch of followInPlaceRewrite(), by dof (read only at its targets)
 
   Index size() const { return Index(begin.size()); }
   /** True when the pool holds more garbage than live entries. */
@@ -206,25 +206,39 @@ struct TransposedPattern {
     const Index total = store.outerSize();
     auto isChanged = [&](Index x) { return x >= previous || changed[x]; };
     targets.clear();
-    pairs.clear();
     for (StorageIndex o : changedList)
       if (o < total) targets.push_back(o);
     for (Index x = previous; x < total; ++x) targets.push_back(StorageIndex(x));
-    for (StorageIndex x : targets)  // (y, x): the outer vector of x holds y, both changed or new
-      for (Index p = store.begin[x]; p < store.end[x]; ++p) {
-        const StorageIndex y = store.inner[p];
-        if (y != x && isChanged(y)) pairs.emplace_back(y, x);
-      }
     std::sort(targets.begin(), targets.end());
-    std::sort(pairs.begin(), pairs.end());
+    // the pairs (y, x) where the outer vector of x holds y, both changed or new (so y is a target
+    // too), bucketed by y with x increasing: counted, then placed (a counting sort)
+    slot.resize(total);
+    for (StorageIndex y : targets) slot[y] = 0;
+    auto forEachPair = [&](auto&& visit) {
+      for (StorageIndex x : targets)
+        for (Index p = store.begin[x]; p < store.end[x]; ++p) {
+          const StorageIndex y = store.inner[p];
+          if (y != x && isChanged(y)) visit(y, x);
+        }
+    };
+    forEachPair([&](StorageIndex y, StorageIndex) { ++slot[y]; });
+    Index placed = 0;
+    for (StorageIndex y : targets) {
+      const Index count = slot[y];
+      slot[y] = placed;
+      placed += count;
+    }
+    sources.resize(placed);
+    forEachPair([&](StorageIndex y, StorageIndex x) { sources[slot[y]++] = x; });  // (slot[y]: the end of y's bucket)
     beginRewrites(total);
-    auto e = pairs.begin();
+    Index from = 0;
     for (StorageIndex y : targets) {
       list.clear();
       if (y < previous)  // its unchanged neighbours stay
         for (Index q = begin[y]; q < end[y]; ++q)
           if (!changed[pool[q]]) list.push_back(pool[q]);
-      for (; e != pairs.end() && e->first == y; ++e) list.push_back(e->second);
+      list.insert(list.end(), sources.begin() + from, sources.begin() + slot[y]);
+      from = slot[y];
       rewrite(y, list.data(), Index(list.size()));
     }
   }
@@ -245,7 +259,8 @@ struct TransposedPattern {
   /** Bytes held. */
   Index bytes() const {
     return Index((begin.capacity() + end.capacity()) * sizeof(Index) +
-                 (pool.capacity() + targets.capacity() + list.capacity() + 2 * pairs.capacity()) * sizeof(StorageIndex) +
+                 (pool.capacity() + targets.capacity() + list.capacity() + sources.capacity()) * sizeof(StorageIndex) +
+                 slot.capacity() * sizeof(Index) +
                  rewrites.capacity() * sizeof(Rewrite));
   }
 };

@@ -52,6 +52,11 @@ constexpr double FoldFlopWeight = 2.5;
 /** \internal The same for the split of an update-matrix change (matrix products, a thin QR and a
   * small eigenproblem: 1.1x for m ≈ 250, more for small ones). */
 constexpr double SplitFlopWeight = 1.5;
+/** \internal A fold plan is taken when its modelled time is below this share of the dirty
+  * supernodes' refactorization: the route also pays the compare of the cut matrix with the
+  * uncut one and the bookkeeping of the folded supernodes, which the flop model leaves out (on
+  * bunny and igea cuts a plan saving under ~5% was slower than the partial refactorization). */
+constexpr double MixedRouteShare = 0.95;
 
 /** \internal A refactored supernode whose parent is folded: the change of its update matrix is
   * split with at most \a bound columns, \a likely expected (updateMatrixChange()). */

@@ -37,6 +37,9 @@ struct SubtreeSchedule {
   std::vector<Index> top;                         ///< remaining supernodes, increasing
 };
 
+/** \internal How many entries ahead an assembly map's scattered loads are prefetched. */
+constexpr Index AssemblyPrefetchDistance = 16;
+
 /** \internal Below this many flops a factorization runs on one thread. */
 constexpr double MinParallelFlops = 2e7;
 
@@ -362,6 +365,8 @@ class SupernodalNumeric {
       for (Index k = 0; k < nr && !anyRemoved; ++k) anyRemoved = in.removed[node.rows[k]] != 0;
     if (!anyRemoved) {
       for (Index k = 0; k < na; ++k) {
+        // (a supernode's columns are scattered over the input: the loads miss the cache, fetched ahead)
+        if (k + AssemblyPrefetchDistance < na) internal::prefetch(in.values + source[k + AssemblyPrefetchDistance]);
         const Index t = target[k];
         const Scalar v = in.values[source[k]];
         if (t >= 0)

@@ -903,8 +903,17 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::collectCompared(DofC
   for (StorageIndex d : change.hint) addWithNeighbours(d);
   for (StorageIndex i : change.touched) addWithNeighbours(i);
   for (Index x = m_n; x < total; ++x) add(x);  // the copies of an insertion
-  for (StorageIndex x : compared) listed[x] = 0;
-  std::sort(compared.begin(), compared.end());
+  if (Index(compared.size()) * 16 < total) {  // few: sorted
+    for (StorageIndex x : compared) listed[x] = 0;
+    std::sort(compared.begin(), compared.end());
+    return;
+  }
+  compared.clear();  // many (a long seam): read off the flags in order, cheaper than a sort
+  for (Index x = 0; x < total; ++x)
+    if (listed[x]) {
+      listed[x] = 0;
+      compared.push_back(StorageIndex(x));
+    }
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
@@ -1236,7 +1245,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       if (!force)
         planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
                            m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
-      if (force || (!top.empty() && planned < dirtyFlops)) {
+      if (force || (!top.empty() && planned < internal::updatable_cholesky::MixedRouteShare * dirtyFlops)) {
         const std::vector<StorageIndex>& mismatched = gluingMismatchesOf(change);  // (flags in diff.mismatch)
         for (Index s : dirty) {
           const auto& node = m_factor.nodes[s];
@@ -1251,7 +1260,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
                            m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
       }
-      if (top.empty() || (!force && planned >= dirtyFlops)) {
+      if (top.empty() || (!force && planned >= internal::updatable_cholesky::MixedRouteShare * dirtyFlops)) {
         top.clear();
         bottom.clear();
       } else {
