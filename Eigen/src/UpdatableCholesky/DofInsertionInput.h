@@ -471,6 +471,8 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
       const Index r = u - base;
       const Index col = relabel.newPosition[oldFirst + c] - node.firstCol, row = position[relabel.newPosition[oldRows[r]]];
       eigen_assert(col >= 0 && row >= 0 && "remapAssemblyMaps: a surviving entry left the structure");
+      eigen_assert((kept == 0 || col >= (target[kept - 1] >= 0 ? target[kept - 1] : ~target[kept - 1]) / nr) &&
+                   "remapAssemblyMaps: kept entries out of column order");
       const Index offset = col * nr + row;
       source[kept] = src;
       target[kept] = t >= 0 ? offset : ~offset;

@@ -1241,11 +1241,12 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       // nothing, neither does the one with the mismatches, and the compare is not made (a
       // forced route makes the plan in any case)
       folded.assign(ns, 0);
+      const double mixedLimit = internal::updatable_cholesky::MixedRouteShare * dirtyFlops;
       double planned = 0;
       if (!force)
         planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
                            m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
-      if (force || (!top.empty() && planned < internal::updatable_cholesky::MixedRouteShare * dirtyFlops)) {
+      if (force || (!top.empty() && planned < mixedLimit)) {
         const std::vector<StorageIndex>& mismatched = gluingMismatchesOf(change);  // (flags in diff.mismatch)
         for (Index s : dirty) {
           const auto& node = m_factor.nodes[s];
@@ -1260,7 +1261,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank,
                            m_removedPermuted.data(), force, folded, bottom, top, boundary, m_workspace);
       }
-      if (top.empty() || (!force && planned >= internal::updatable_cholesky::MixedRouteShare * dirtyFlops)) {
+      if (top.empty() || (!force && planned >= mixedLimit)) {
         top.clear();
         bottom.clear();
       } else {
