@@ -24,7 +24,7 @@
 
 #include <algorithm>
 #include <limits>
-#include <map>
+#include <utility>
 #include <vector>
 
 namespace Eigen {
@@ -64,6 +64,64 @@ struct DofRelabeling {
   }
 };
 
+/** \internal Storage (blocks or buffers) set aside by one call for the next, found by its size:
+  * filled with add(), then seal()ed (sorted by size once), then take()n from; a taken entry is
+  * skipped by the following searches through a next-free link with path compression, so that a
+  * call with many supernodes of one size does not rescan the ones already taken. */
+template <typename Storage>
+struct SparePool {
+  std::vector<std::pair<Index, Storage> > entries;  ///< (size, storage), sorted by size once sealed
+  std::vector<Index> nextFree;                      ///< an entry at or after this one that may be free
+
+  /** Frees every entry (the arrays keep their capacity). */
+  void clear() {
+    entries.clear();
+    nextFree.clear();
+  }
+  /** Moves \a storage (left empty) into the pool under \a size. */
+  void add(Index size, Storage& storage) {
+    entries.emplace_back(size, Storage());
+    entries.back().second.swap(storage);
+  }
+  /** Sorts the entries by size; every entry is free. */
+  void seal() {
+    std::sort(entries.begin(), entries.end(),
+              [](const std::pair<Index, Storage>& a, const std::pair<Index, Storage>& b) { return a.first < b.first; });
+    nextFree.resize(entries.size() + 1);
+    for (std::size_t k = 0; k < nextFree.size(); ++k) nextFree[k] = Index(k);
+  }
+  /** Swaps into \a out (empty) the free entry of the smallest size in [least, most], if there is
+    * one; \returns whether there was. */
+  bool take(Index least, Index most, Storage& out) {
+    const Index count = Index(entries.size());
+    if (count == 0) return false;
+    Index k = Index(std::lower_bound(entries.begin(), entries.end(), least,
+                                     [](const std::pair<Index, Storage>& e, Index v) { return e.first < v; }) -
+                    entries.begin());
+    k = firstFree(k);
+    if (k >= count || entries[k].first > most) return false;
+    out.swap(entries[k].second);
+    nextFree[k] = k + 1;  // (taken: searches go on past it)
+    return true;
+  }
+  /** Bytes of the bookkeeping (not of the storage). */
+  Index bytes() const {
+    return Index(entries.capacity() * sizeof(std::pair<Index, Storage>) + nextFree.capacity() * sizeof(Index));
+  }
+
+ private:
+  Index firstFree(Index k) {
+    Index root = k;
+    while (nextFree[root] != root) root = nextFree[root];
+    while (nextFree[k] != root) {  // path compression
+      const Index up = nextFree[k];
+      nextFree[k] = root;
+      k = up;
+    }
+    return root;
+  }
+};
+
 /** \internal The parts of the factor an insertion or merge changes, kept for a revert (kept by
   * the solver between calls, so that its per-supernode arrays are reused). */
 template <typename Scalar, typename StorageIndex>
@@ -78,10 +136,10 @@ struct FactorStructureBackup {
     * (by size): a buffer that is already allocated, touched and large enough needs neither the
     * page faults nor the zeroing of a new one (the update matrices of an insertion and of the
     * merge that undoes it are the same sizes, swapped). */
-  std::multimap<Index, UpdateBuffer<Scalar> > spareCache;
+  SparePool<UpdateBuffer<Scalar> > spareCache;
   /** The previous call's blocks of its dirty supernodes, kept likewise for blocks of the same
     * number of entries (a block's storage is reused only at the same size). */
-  std::multimap<Index, Matrix<Scalar, Dynamic, Dynamic> > spareValues;
+  SparePool<Matrix<Scalar, Dynamic, Dynamic> > spareValues;
 
   /** Empties what the call kept of the \a dirty supernodes (and of their children), so that
     * every per-supernode entry is empty between calls: the row lists keep their storage (the
@@ -94,23 +152,21 @@ struct FactorStructureBackup {
     spareValues.clear();
     for (Index s : dirty) {
       rows[s].clear();
-      if (values[s].size() > 0) spareValues.emplace(values[s].size(), std::move(values[s]));  // (leaves it empty)
-      if (!cache[s].empty()) spareCache.emplace(Index(cache[s].size()), std::move(cache[s]));
+      if (values[s].size() > 0) spareValues.add(values[s].size(), values[s]);  // (leaves it empty)
+      if (!cache[s].empty()) spareCache.add(Index(cache[s].capacity()), cache[s]);  // (by capacity: what it can hold)
       UpdateBuffer<Scalar>().swap(cache[s]);
       for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) parentPosition[c].clear();
     }
+    spareCache.seal();
+    spareValues.seal();
   }
 
   /** Gives \a block (empty) the storage of a spare block of exactly rows × cols entries, if there
     * is one, resized to rows × cols (its values are stale: the caller overwrites them). */
   void takeSpare(Index rows, Index cols, Matrix<Scalar, Dynamic, Dynamic>& block) {
     const Index size = rows * cols;
-    if (size == 0) return;
-    auto it = spareValues.find(size);
-    if (it == spareValues.end()) return;
-    block.swap(it->second);
+    if (size == 0 || !spareValues.take(size, size, block)) return;
     block.resize(rows, cols);  // (the same number of entries: no reallocation)
-    spareValues.erase(it);
 #ifndef NDEBUG
     block.setConstant(Scalar(std::numeric_limits<typename NumTraits<Scalar>::Real>::quiet_NaN()));
 #endif
@@ -120,11 +176,7 @@ struct FactorStructureBackup {
     * that holds at most twice as many (so that buffers do not grow from call to call; its values
     * are stale: the caller writes what it reads). */
   void takeSpare(Index size, UpdateBuffer<Scalar>& buffer) {
-    if (size == 0) return;
-    auto it = spareCache.lower_bound(size);
-    if (it == spareCache.end() || Index(it->second.capacity()) > 2 * size) return;
-    buffer.swap(it->second);
-    spareCache.erase(it);
+    if (size == 0 || !spareCache.take(size, 2 * size, buffer)) return;
 #ifndef NDEBUG  // stale values: poisoned, so that a test reading them fails
     std::fill(buffer.begin(), buffer.end(), Scalar(std::numeric_limits<typename NumTraits<Scalar>::Real>::quiet_NaN()));
 #endif
@@ -133,8 +185,9 @@ struct FactorStructureBackup {
   /** Bytes held between calls (the spare buffers and the storage of the emptied row lists). */
   Index bytes() const {
     Index b = 0;
-    for (const auto& buffer : spareCache) b += Index(buffer.second.capacity() * sizeof(Scalar));
-    for (const auto& block : spareValues) b += Index(block.second.size() * sizeof(Scalar));
+    for (const auto& entry : spareCache.entries) b += Index(entry.second.capacity() * sizeof(Scalar));
+    for (const auto& entry : spareValues.entries) b += Index(entry.second.size() * sizeof(Scalar));
+    b += spareCache.bytes() + spareValues.bytes();
     for (const auto& list : rows) b += Index(list.capacity() * sizeof(StorageIndex));
     for (const auto& list : parentPosition) b += Index(list.capacity() * sizeof(StorageIndex));
     return b;

@@ -74,36 +74,28 @@ class ForwardSolveCache {
     * the new structure). The kept values of the columns that stay move with them; every new
     * column gets a right-hand side that matches nothing (so it is substituted). A supernode keeps
     * its update vector when its number of rows below is the same, and is substituted again
-    * otherwise; the caller still reports the supernodes whose blocks changed (markChanged()). */
+    * otherwise; the caller still reports the supernodes whose blocks changed (markChanged()).
+    * \a firstMoved: the old columns below it keep their position (0 if unknown); \a reshaped:
+    * the only supernodes whose number of rows may have changed (null: any). */
   template <typename Positions>
-  void relabel(const Positions& newPosition, const Factor& f) {
+  void relabel(const Positions& newPosition, const Factor& f, Index firstMoved = 0,
+               const std::vector<Index>* reshaped = nullptr) {
     if (!m_valid) return;
-    const Index ns = f.count(), oldN = m_n, newN = f.n, k = m_k;
+    const Index ns = f.count(), oldN = m_n, newN = f.n;
     if (Index(newPosition.size()) != oldN || Index(m_redo.size()) != ns) return invalidate();
     typedef typename NumTraits<Scalar>::Real Real;
-    if (!planMove(newPosition, newN)) return invalidate();
+    if (!planMove(newPosition, newN, (std::min)(firstMoved, oldN))) return invalidate();
     moveInPlace(newN, m_rhs, Scalar(std::numeric_limits<Real>::quiet_NaN()));  // (NaN equals nothing)
     moveInPlace(newN, m_y, Scalar(0));
     m_n = newN;
     // the update vectors: a supernode whose rows below changed is substituted again, in its
     // region if it fits, else in a new one at the end; the regions are laid out anew once the
     // abandoned ones hold as much as the live ones
-    Index live = 0;
-    for (Index s = 0; s < ns; ++s) {
-      const Index length = f.nodes[s].below() * k;
-      live += length;
-      if (length == m_length[s]) continue;
-      m_redo[s] = 1;
-      m_length[s] = length;
-      if (length <= m_capacity[s]) continue;
-      m_abandoned += m_capacity[s];
-      m_offset[s] = Index(m_update.size());
-      m_capacity[s] = length;
-      if (m_update.capacity() < m_update.size() + std::size_t(length))  // (grown by an eighth, not doubled)
-        m_update.reserve(m_update.size() + std::size_t(length) + m_update.size() / 8);
-      m_update.resize(m_update.size() + std::size_t(length));
-    }
-    if (m_abandoned > live) compactUpdates();
+    if (reshaped)
+      for (Index s : *reshaped) resizeUpdate(f, s);
+    else
+      for (Index s = 0; s < ns; ++s) resizeUpdate(f, s);
+    if (m_abandoned > m_live) compactUpdates();
   }
 
   /** Frees the memory held (the next forward() does a full pass). */
@@ -159,10 +151,28 @@ class ForwardSolveCache {
     }
     m_capacity = m_length;
     m_abandoned = 0;
+    m_live = total;
     m_rhs.resize(m_n * k);
     m_y.resize(m_n * k);
     m_update.resize(total);
     m_redo.assign(ns, 1);
+  }
+
+  /** Gives supernode \a s an update vector of its current size (a new region at the end when
+    * its own is too small), to be substituted again if the size changed. */
+  void resizeUpdate(const Factor& f, Index s) {
+    const Index length = f.nodes[s].below() * m_k;
+    if (length == m_length[s]) return;
+    m_redo[s] = 1;
+    m_live += length - m_length[s];
+    m_length[s] = length;
+    if (length <= m_capacity[s]) return;
+    m_abandoned += m_capacity[s];
+    m_offset[s] = Index(m_update.size());
+    m_capacity[s] = length;
+    if (m_update.capacity() < m_update.size() + std::size_t(length))  // (grown by an eighth, not doubled)
+      m_update.reserve(m_update.size() + std::size_t(length) + m_update.size() / 8);
+    m_update.resize(m_update.size() + std::size_t(length));
   }
 
   /** Lays the update vectors out again one after the other (the kept ones keep their values). */
@@ -186,14 +196,17 @@ class ForwardSolveCache {
     * dimension \a newN: entry q of each column goes to newPosition[q], or leaves when it is -1.
     * The kept entries keep their order, so they move in runs of the same shift (m_runs). \returns
     * false when the positions are not such a renumbering in one direction (all kept entries
-    * moving up, or all moving down), which moveInPlace() could not do in place. */
+    * moving up, or all moving down), which moveInPlace() could not do in place. The entries
+    * below \a firstMoved keep their position (one run, not read). */
   template <typename Positions>
-  bool planMove(const Positions& newPosition, Index newN) {
+  bool planMove(const Positions& newPosition, Index newN, Index firstMoved) {
     const Index oldN = m_n;
     std::vector<Index>& runs = m_runs;  // (begin, end, shift) of each run of kept entries
     runs.clear();
     bool up = false, down = false;
-    for (Index q = 0; q < oldN; ++q) {
+    eigen_assert(firstMoved <= newN && "ForwardSolveCache::planMove: the unmoved entries do not fit");
+    if (firstMoved > 0) runs.insert(runs.end(), {Index(0), firstMoved, Index(0)});  // (entries that stay)
+    for (Index q = firstMoved; q < oldN; ++q) {
       const Index to = Index(newPosition[q]);
       if (to < 0) continue;
       if (to >= newN) return false;
@@ -304,7 +317,8 @@ class ForwardSolveCache {
         const Scalar* vc = v + c * nr;
         std::memcpy(X + node.firstCol + c * ldx, vc, std::size_t(nc) * sizeof(Scalar));
         std::memcpy(m_y.data() + node.firstCol + c * m_n, vc, std::size_t(nc) * sizeof(Scalar));
-        std::memcpy(m_update.data() + m_offset[s] + c * (nr - nc), vc + nc, std::size_t(nr - nc) * sizeof(Scalar));
+        if (nr > nc)  // (a root keeps no update vector: m_update may even be empty)
+          std::memcpy(m_update.data() + m_offset[s] + c * (nr - nc), vc + nc, std::size_t(nr - nc) * sizeof(Scalar));
       }
     }
     m_valid = true;
@@ -319,6 +333,7 @@ class ForwardSolveCache {
   std::vector<Index> m_length;   ///< the scalars of each supernode's update vector (below()·k)
   std::vector<Index> m_capacity; ///< the scalars its region holds (relabel() reuses it when they fit)
   Index m_abandoned = 0;         ///< scalars of m_update in regions no supernode uses any more
+  Index m_live = 0;              ///< scalars of m_update in use (the sum of m_length)
   std::vector<char> m_redo;      ///< supernodes to substitute again (all zero after a pass)
   std::vector<Index> m_runs;     ///< planMove()'s runs of kept entries: (begin, end, shift) each
   bool m_moveUp = false;         ///< planMove(): the entries move up (moveInPlace() goes from the end)

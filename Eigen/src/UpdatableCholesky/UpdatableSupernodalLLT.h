@@ -1224,9 +1224,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       if (eligible[s]) eligibleFlops += internal::updatable_cholesky::frontFlops(node, removedFlags);
     }
     const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
-    // a fold saves at most the refactorization of the supernodes it may fold: below a fiftieth
-    // of the dirty work, the plan (and the compare it needs) is not worth making
-    if (force || 50 * eligibleFlops >= dirtyFlops) {
+    // a fold saves at most the refactorization of the supernodes it may fold, and a plan is
+    // taken only when it saves more than (1 - MixedRouteShare) of the dirty work: below that,
+    // the plan (and the compare it needs) is not made
+    if (force || eligibleFlops > (1 - internal::updatable_cholesky::MixedRouteShare) * dirtyFlops) {
       for (Index s : dirty) {  // the copies and merged dofs: a lower bound of the ranks
         const auto& node = m_factor.nodes[s];
         for (Index c = node.firstCol; c < node.firstCol + node.ncols; ++c)
@@ -1341,7 +1342,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   } else {
     diff.commit(m_store);
     m_info = Success;
-    m_solveCache.relabel(change.relabel.newPosition, m_factor);  // (recordUpdate() marks the dirty supernodes)
+    // (only the dirty supernodes gain or lose rows; recordUpdate() marks them to be substituted)
+    m_solveCache.relabel(change.relabel.newPosition, m_factor, change.relabel.firstMoved, &dirty);
   }
   for (Index s : dirty) mark[s] = 0;
   backup.release(m_factor, dirty);  // the previous blocks are not kept past the call
