@@ -31,6 +31,7 @@
 #include <unsupported/Eigen/MeshTools>
 
 #include "BlasCore.h"
+#include "HeapPolicy.h"
 #include "BenchReport.h"
 #include "SeamBenchOptions.h"
 #include "CholmodPeer.h"
@@ -730,6 +731,7 @@ private:
 int main(int argc, char** argv)
 {
   bench::ensureOpenBlasCore(argv);  // (may re-execute with OPENBLAS_CORETYPE: see BlasCore.h)
+  const bool heapRetained = bench::retainFreedMemory();  // (every method alike: see HeapPolicy.h)
   Options options;
   if (!bench::parseSeamBenchOptions(argc, argv, kNames, options)) return 2;
   if (openblas_set_num_threads) openblas_set_num_threads(options.threads);
@@ -744,6 +746,7 @@ int main(int argc, char** argv)
               "warm-up seam\n");
   std::printf("  compiled for %s (ours, Eigen); %s\n", bench::compiledInstructionSet(),
               bench::openBlasCoreNote().c_str());
+  std::printf("  %s\n", bench::heapPolicyNote(heapRetained).c_str());
 
   const bool allOk = bench::forEachMesh("bench_insert_dofs", options.grid, options.meshes,
                                          [&](const std::string& name, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {

@@ -25,6 +25,7 @@
 #include <unsupported/Eigen/MeshTools>
 
 #include "BlasCore.h"
+#include "HeapPolicy.h"
 #include "BenchReport.h"
 #include "SeamBenchOptions.h"
 #include "CholmodPeer.h"
@@ -727,6 +728,7 @@ private:
 int main(int argc, char** argv)
 {
   bench::ensureOpenBlasCore(argv);  // (may re-execute with OPENBLAS_CORETYPE: see BlasCore.h)
+  const bool heapRetained = bench::retainFreedMemory();  // (every method alike: see HeapPolicy.h)
   Options options;
   if (!bench::parseSeamBenchOptions(argc, argv, kNames, options)) return 2;
   if (openblas_set_num_threads) openblas_set_num_threads(options.threads);
@@ -740,6 +742,7 @@ int main(int argc, char** argv)
               "methods interleaved per seam after one warm-up seam\n");
   std::printf("  compiled for %s (ours, Eigen); %s\n", bench::compiledInstructionSet(),
               bench::openBlasCoreNote().c_str());
+  std::printf("  %s\n", bench::heapPolicyNote(heapRetained).c_str());
 
   const bool allOk = bench::forEachMesh("bench_remove_dofs", options.grid, options.meshes,
                                          [&](const std::string& name, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
