@@ -26,6 +26,7 @@ struct SeamBenchOptions
   unsigned seed = 20240611u;
   std::string csvDir;
   bool smoke = false;
+  bool oursOnly = false;  ///< run only this library's methods (the peers' columns stay empty)
 };
 
 /** How one seam benchmark names itself: program, CSV stem (<stem>_<mesh>.csv), plot script, and
@@ -43,7 +44,7 @@ inline void printSeamBenchUsage(const SeamBenchNames& names)
 {
   const std::string pad(std::string(names.program).size(), ' ');
   std::cout << "usage: " << names.program << " [--mesh=PATH[,PATH...]]... [--grid=N] [--lengths=1,5,20,100,500,2000]\n"
-            << "       " << pad << " [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--smoke]\n"
+            << "       " << pad << " [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--ours-only] [--smoke]\n"
             << "  --mesh=PATH     OFF mesh, plain or gzip; repeatable or comma-separated\n"
             << "                  (default: " << names.defaultMeshes << ")\n"
             << "  --grid=N        a generated N x N planar grid instead\n"
@@ -54,6 +55,8 @@ inline void printSeamBenchUsage(const SeamBenchNames& names)
             << "  --seed=S        base seed of the seams (default 20240611)\n"
             << "  --csv-dir=DIR   write " << names.csvStem << "_<mesh>.csv (medians), _samples.csv and _setup.csv there;\n"
             << "                  plot with " << names.plotScript << " DIR\n"
+            << "  --ours-only     (bench_insert_dofs) only this library's methods: many repeats of the insert/remove\n"
+            << "                  ratio on a large mesh without the peers' seconds per seam (their columns print '-')\n"
             << "  --smoke         tiny grid, l = 1,5, one seam: a quick correctness run for CI\n";
 }
 
@@ -89,6 +92,7 @@ inline bool parseSeamBenchOptions(int argc, char** argv, const SeamBenchNames& n
     }
     else if (key == "--csv-dir" && !value.empty()) o.csvDir = value;
     else if (key == "--smoke" && eq == std::string::npos) o.smoke = true;
+    else if (key == "--ours-only" && eq == std::string::npos) o.oursOnly = true;
     else if (key == "--help" || key == "-h")
     {
       printSeamBenchUsage(names);

@@ -21,7 +21,8 @@
 // a tiny grid once, for CI.
 //
 // Usage: bench_insert_dofs [--mesh=PATH[,PATH...]]... [--grid=N] [--lengths=1,5,20,100,500,2000]
-//                          [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--smoke]
+//                          [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--ours-only] [--smoke]
+// (--ours-only: insertDofs and removeDofs alone, for many repeats of their ratio on a large mesh.)
 // Exit code: 0 if every answer was right, 1 otherwise, 2 on bad usage.
 
 #include <Eigen/UpdatableCholesky>
@@ -145,6 +146,7 @@ struct Sample
   std::string route;           ///< ours: the route taken
   long dirty = -1;             ///< ours: dirty supernodes; SMW: size of the capacity matrix
   bool ok = true;
+  bool skipped = false;        ///< not run (--ours-only): no time, no answer
   std::string message;
   Eigen::VectorXd x;
 };
@@ -158,6 +160,7 @@ struct Summary
 
   void add(const Sample& s)
   {
+    if (s.skipped) return;
     ms.add(s.ms);
     if (!std::isnan(s.callMs)) call.add(s.callMs);
     if (!std::isnan(s.updateMs)) update.add(s.updateMs);
@@ -397,6 +400,11 @@ private:
   Sample runMethod(const Method& method, const Cut& cut)
   {
     Sample s;
+    if (m_options.oursOnly && method.kind != Kind::OursInsert && method.kind != Kind::OursRemove)
+    {
+      s.skipped = true;
+      return s;
+    }
     switch (method.kind)
     {
     case Kind::OursInsert:
@@ -513,7 +521,7 @@ private:
     for (std::size_t k = 2; k < samples.size(); ++k)
     {
       Sample& s = samples[k];
-      if (!s.ok || !ref.ok) continue;
+      if (!s.ok || !ref.ok || s.skipped) continue;
       s.error = s.x.size() == ref.x.size() ? (s.x - ref.x).lpNorm<Eigen::Infinity>() / refNorm : kNaN;
       if (!(s.error <= kRelativeTolerance))
       {

@@ -731,6 +731,11 @@ int main(int argc, char** argv)
   const bool heapRetained = bench::retainFreedMemory();  // (every method alike: see HeapPolicy.h)
   Options options;
   if (!bench::parseSeamBenchOptions(argc, argv, kNames, options)) return 2;
+  if (options.oursOnly)
+  {
+    std::fprintf(stderr, "bench_remove_dofs: --ours-only is an option of bench_insert_dofs only\n");
+    return 2;
+  }
   if (openblas_set_num_threads) openblas_set_num_threads(options.threads);
 
   std::printf("bench_remove_dofs: %s\n", options.smoke ? "SMOKE run (tiny grid, l = 1,5, one seam)"
