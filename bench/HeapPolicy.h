@@ -54,8 +54,8 @@ inline bool retainFreedMemory()
   if (keep && *keep && std::string(keep) != "0") return false;
 #if defined(__GLIBC__)
   const bool trim = mallopt(M_TRIM_THRESHOLD, 1 << 30) == 1;  // (never reached: the heap keeps its top)
-  const bool mmap = mallopt(M_MMAP_THRESHOLD, 32 << 20) == 1; // (glibc's largest: bigger blocks are mapped)
-  return trim && mmap;
+  const bool mapped = mallopt(M_MMAP_THRESHOLD, 32 << 20) == 1; // (glibc's largest: bigger blocks are mapped)
+  return trim && mapped;
 #else
   return false;
 #endif
