@@ -88,6 +88,8 @@ struct InputDiff {
   std::vector<StorageIndex> position;    ///< scratch by new permuted row, all -1 between uses
   InputStore<Scalar, StorageIndex> spare;  ///< rebuilt: the previous store (the revert)
   TransposedPattern<StorageIndex> spareTransposed;  ///< rebuilt: the previous transposed pattern (the revert)
+  std::vector<FreshEntry<StorageIndex> > freshEntries, freshSorted;  ///< the fresh entries in C, as found / by column
+  std::vector<StorageIndex> freshCount;  ///< scratch of sortFreshEntries()
   std::vector<char> mismatch;  ///< scratch by new dof, zero between uses (gluingMismatches())
   std::vector<StorageIndex> mismatchList;  ///< the dofs where the cut matrix does not glue back
   GluingScratch<Scalar> gluing;  ///< gluingMismatches()'s scratch
@@ -140,7 +142,9 @@ struct InputDiff {
                  (posMap.capacity() + freshOuter.capacity() + position.capacity() + changedList.capacity() +
                   mismatchList.capacity()) *
                      sizeof(StorageIndex) +
-                 spare.bytes() + spareTransposed.bytes() + rewrites.capacity() * sizeof(Rewrite) + gluing.bytes());
+                 spare.bytes() + spareTransposed.bytes() + rewrites.capacity() * sizeof(Rewrite) + gluing.bytes() +
+                 (freshEntries.capacity() + freshSorted.capacity()) * sizeof(FreshEntry<StorageIndex>) +
+                 freshCount.capacity() * sizeof(StorageIndex));
   }
 };
 
@@ -191,6 +195,15 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
   const bool subset = only && d.inPlace;
   const Index count = subset ? Index(only->size()) : total;
   for (Index k = 0; k < count; ++k) {
+    if (subset && k + AssemblyPrefetchDistance < count) {  // (scattered outer vectors: their loads miss the cache)
+      const Index ahead = Index((*only)[k + AssemblyPrefetchDistance]), oa = oldOfNew[ahead];
+      internal::prefetch(inner + outer[ahead]);
+      internal::prefetch(values + outer[ahead]);
+      if (oa >= 0) {
+        internal::prefetch(store.inner.data() + store.begin[oa]);
+        internal::prefetch(store.values.data() + store.begin[oa]);
+      }
+    }
     const Index x = subset ? Index((*only)[k]) : k;
     const Index ox = oldOfNew[x];
     const Index nb = outer[x], ne = outer[x + 1];
@@ -419,16 +432,37 @@ std::vector<Index> ownersOfRewrites(const SupernodalFactor<Scalar, StorageIndex>
   return owners;
 }
 
+/** \internal Writes into \a out the fresh \a entries (columns below \a columns) ordered by column,
+  * then by source, the order remapAssemblyMaps() reads them in (the source breaks ties so that the
+  * maps do not depend on the order the entries were found in). A count per column then a pass of
+  * insertion sort within each column (a few entries): linear, where a comparison sort of the tens
+  * of thousands of entries of a long cut pays a log factor. \a count: scratch. */
+template <typename StorageIndex>
+void sortFreshEntries(const std::vector<FreshEntry<StorageIndex> >& entries, Index columns,
+                      std::vector<StorageIndex>& count, std::vector<FreshEntry<StorageIndex> >& out) {
+  count.assign(columns + 1, StorageIndex(0));
+  for (const auto& e : entries) ++count[Index(e.col) + 1];
+  for (Index j = 0; j < columns; ++j) count[j + 1] += count[j];
+  out.resize(entries.size());
+  for (const auto& e : entries) out[count[Index(e.col)]++] = e;
+  for (std::size_t k = 1; k < out.size(); ++k) {
+    const FreshEntry<StorageIndex> e = out[k];
+    std::size_t i = k;
+    for (; i > 0 && out[i - 1].col == e.col && out[i - 1].source > e.source; --i) out[i] = out[i - 1];
+    out[i] = e;
+  }
+}
+
 /** \internal Renews every supernode's assembly map after relabelFactor(): clean supernodes map
   * their sources through \a posMap (only those in \a movedOwners, when given: the others' entries
   * stayed where they were); dirty ones (\a dirty) are rebuilt from their old maps (kept in
-  * the nodes; old rows, first columns and column counts in \a backup) and the \a fresh entries,
-  * column by column like every map. */
+  * the nodes; old rows, first columns and column counts in \a backup) and the \a fresh entries
+  * (ordered by sortFreshEntries()), column by column like every map. */
 template <typename Scalar, typename StorageIndex>
 void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorStructureBackup<Scalar, StorageIndex>& backup,
                        const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
                        const std::vector<Index>& dirty, const std::vector<StorageIndex>& posMap,
-                       std::vector<FreshEntry<StorageIndex> >& fresh, std::vector<StorageIndex>& position,
+                       const std::vector<FreshEntry<StorageIndex> >& fresh, std::vector<StorageIndex>& position,
                        const std::vector<Index>* movedOwners) {
   auto remapClean = [&](Index s) {
     if (mark[s]) return;
@@ -441,11 +475,7 @@ void remapAssemblyMaps(SupernodalFactor<Scalar, StorageIndex>& f, const FactorSt
     for (Index s : *movedOwners) remapClean(s);
   else
     for (Index s = 0; s < f.count(); ++s) remapClean(s);
-  // (a supernode's columns are contiguous: in column order, the fresh entries come supernode by
-  // supernode; the source breaks ties so that the map does not depend on the sort)
-  std::sort(fresh.begin(), fresh.end(), [](const FreshEntry<StorageIndex>& a, const FreshEntry<StorageIndex>& b) {
-    return a.col != b.col ? a.col < b.col : a.source < b.source;
-  });
+  // (a supernode's columns are contiguous: in column order, the fresh entries come supernode by supernode)
   position.resize(f.n, StorageIndex(-1));
   auto next = fresh.begin();
   for (Index s : dirty) {

@@ -76,8 +76,9 @@ struct UpdateWorkspace {
 };
 
 /** \internal Checks a list of dof indices: every index in [0,n), none repeated (found by
-  * sorting a copy, so the cost is that of the list, not of n). On success fills \a out;
-  * otherwise returns false and leaves a reason in \a why. */
+  * sorting a copy when the list is short, so that the cost is that of the list, not of n; by
+  * flags when it holds more than n/16 indices, where a sort costs more than a pass over n).
+  * On success fills \a out; otherwise returns false and leaves a reason in \a why. */
 template <typename Indices, typename StorageIndex>
 bool checkIndices(const Indices& indices, Index n, std::vector<StorageIndex>& out, const char*& why) {
   const Index count = Index(indices.size());
@@ -90,9 +91,19 @@ bool checkIndices(const Indices& indices, Index n, std::vector<StorageIndex>& ou
     }
     out[k] = StorageIndex(i);
   }
-  std::vector<StorageIndex> sorted(out);
-  std::sort(sorted.begin(), sorted.end());
-  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+  bool repeated = false;
+  if (count * 16 < n) {  // few: sorted
+    std::vector<StorageIndex> sorted(out);
+    std::sort(sorted.begin(), sorted.end());
+    repeated = std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+  } else {  // many (a long seam): flagged, cheaper than a sort
+    std::vector<char> seen(n, 0);
+    for (Index k = 0; k < count && !repeated; ++k) {
+      repeated = seen[out[k]] != 0;
+      seen[out[k]] = 1;
+    }
+  }
+  if (repeated) {
     why = "index repeated";
     return false;
   }

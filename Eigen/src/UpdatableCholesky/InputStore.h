@@ -206,10 +206,15 @@ struct TransposedPattern {
     const Index total = store.outerSize();
     auto isChanged = [&](Index x) { return x >= previous || changed[x]; };
     targets.clear();
-    for (StorageIndex o : changedList)
-      if (o < total) targets.push_back(o);
+    if (Index(changedList.size()) * 16 < total) {  // few: sorted
+      for (StorageIndex o : changedList)
+        if (o < total) targets.push_back(o);
+      std::sort(targets.begin(), targets.end());
+    } else {  // many (a long seam): read off the flags in order, cheaper than a sort
+      for (Index x = 0; x < (std::min)(previous, total); ++x)
+        if (changed[x]) targets.push_back(StorageIndex(x));
+    }
     for (Index x = previous; x < total; ++x) targets.push_back(StorageIndex(x));
-    std::sort(targets.begin(), targets.end());
     // the pairs (y, x) where the outer vector of x holds y, both changed or new (so y is a target
     // too), bucketed by y with x increasing: counted, then placed (a counting sort)
     slot.resize(total);

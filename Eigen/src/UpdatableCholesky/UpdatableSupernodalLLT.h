@@ -900,7 +900,14 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::collectCompared(DofC
     for (Index p = m_store.begin[i]; p < m_store.end[i]; ++p) add(change.newOfOld[m_store.inner[p]]);
     for (Index q = m_transposed.begin[i]; q < m_transposed.end[i]; ++q) add(change.newOfOld[m_transposed.pool[q]]);
   };
-  for (StorageIndex d : change.hint) addWithNeighbours(d);
+  for (std::size_t k = 0; k < change.hint.size(); ++k) {
+    if (k + internal::updatable_cholesky::AssemblyPrefetchDistance < change.hint.size()) {  // (scattered lists: loads miss the cache)
+      const StorageIndex ahead = change.hint[k + internal::updatable_cholesky::AssemblyPrefetchDistance];
+      internal::prefetch(m_store.inner.data() + m_store.begin[ahead]);
+      internal::prefetch(m_transposed.pool.data() + m_transposed.begin[ahead]);
+    }
+    addWithNeighbours(change.hint[k]);
+  }
   for (StorageIndex i : change.touched) addWithNeighbours(i);
   for (Index x = m_n; x < total; ++x) add(x);  // the copies of an insertion
   if (Index(compared.size()) * 16 < total) {  // few: sorted
@@ -1128,7 +1135,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   FactorStructureBackup<Scalar, StorageIndex>& backup = m_structureBackup;
   if (m_numeric.hasCachedUpdates())  // the dirty caches are set aside as they are: no deferred parts
     for (Index s : dirty) m_numeric.applyCorrections(m_factor, s);
-  std::vector<FreshEntry<StorageIndex> > fresh(diff.fresh.size());
+  std::vector<FreshEntry<StorageIndex> >& fresh = diff.freshEntries;
+  fresh.resize(diff.fresh.size());
   for (Index k = 0; k < Index(fresh.size()); ++k) {  // in the lower triangle of the new C
     const Index p = diff.fresh[k], x = diff.freshOuter[k], y = m_store.inner[p];
     const StorageIndex pi = change.newPerm[rowMajor ? x : y], pj = change.newPerm[rowMajor ? y : x];
@@ -1147,7 +1155,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   std::vector<Index> movedOwners;  // clean supernodes whose entries moved in the store
   if (diff.inPlace) movedOwners = ownersOfRewrites(m_factor, m_store, diff, perm);
   relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup, diff.position);
-  remapAssemblyMaps(m_factor, backup, change.relabel, mark, dirty, diff.posMap, fresh, diff.position,
+  sortFreshEntries(fresh, total, diff.freshCount, diff.freshSorted);
+  remapAssemblyMaps(m_factor, backup, change.relabel, mark, dirty, diff.posMap, diff.freshSorted, diff.position,
                     diff.inPlace ? &movedOwners : nullptr);
   // the removed flags follow (only the removed dofs' entries are written)
   std::vector<StorageIndex>& oldRemovedList = change.previousRemoved;
