@@ -10,7 +10,17 @@
 // interleaved benchmark and 21-23 ms alone. retainFreedMemory() turns trimming off and serves
 // allocations up to 32 MiB from the heap (mallopt), for every method in the process alike: a long-
 // running application (an interactive editor) reaches the same state once its heap has grown.
-// Set UC_BENCH_MALLOC_DEFAULTS=1 to keep glibc's defaults.
+//
+// The heap is also backed by transparent huge pages where the kernel offers them on request
+// (useHugePagesForHeap(): the benchmark re-executes itself once with GLIBC_TUNABLES=
+// glibc.malloc.hugetlb=1, so that malloc asks for them with madvise). With 4 KiB pages the cost of
+// a pass over a large factor depended on what else the process held: armadillo_loop2, one solve
+// (a pass over L): 33-35 ms with our solver alone in the process, 50-86 ms with the peers' factors
+// and dense blocks resident, with no page fault in either; with huge pages, 36-42 ms in both. A
+// TLB miss per 4 KiB of a factor read once is what a solve is charged for, and how much each miss
+// costs depends on where the process's other memory lies; huge pages take that away for every
+// method alike.
+// Set UC_BENCH_MALLOC_DEFAULTS=1 to keep glibc's defaults (neither policy).
 
 #ifndef UPDATABLE_CHOLESKY_BENCH_HEAPPOLICY_H
 #define UPDATABLE_CHOLESKY_BENCH_HEAPPOLICY_H
@@ -46,12 +56,54 @@ inline double pageFaultMicroseconds()
   return us / double(bytes / std::size_t(page));
 }
 
+/** \returns whether UC_BENCH_MALLOC_DEFAULTS asks for glibc's defaults. */
+inline bool mallocDefaultsAsked()
+{
+  const char* keep = std::getenv("UC_BENCH_MALLOC_DEFAULTS");
+  return keep && *keep && std::string(keep) != "0";
+}
+
+/** Re-executes this program once with glibc.malloc.hugetlb=1 added to GLIBC_TUNABLES (see the top
+  * of this file), unless it is there already or UC_BENCH_MALLOC_DEFAULTS is set. Call first thing
+  * in main(); returns when nothing is to be done or the re-execution failed. */
+inline void useHugePagesForHeap(char** argv)
+{
+#if defined(__GLIBC__)
+  if (mallocDefaultsAsked() || std::getenv("UC_BENCH_HUGE_PAGES_REEXEC")) return;
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  std::string value = tunables ? tunables : "";
+  if (value.find("glibc.malloc.hugetlb") != std::string::npos) return;
+  value += std::string(value.empty() ? "" : ":") + "glibc.malloc.hugetlb=1";
+  setenv("GLIBC_TUNABLES", value.c_str(), 1);
+  setenv("UC_BENCH_HUGE_PAGES_REEXEC", "1", 1);  // (once: a glibc without the tunable ignores it)
+  std::fflush(nullptr);
+  execv("/proc/self/exe", argv);  // (only returns on failure: then run with 4 KiB pages)
+  if (tunables) setenv("GLIBC_TUNABLES", tunables, 1); else unsetenv("GLIBC_TUNABLES");
+#else
+  (void)argv;
+#endif
+}
+
+/** \returns whether malloc was asked for transparent huge pages (GLIBC_TUNABLES) and the kernel
+  * grants them on request or always (/sys/kernel/mm/transparent_hugepage/enabled). */
+inline bool heapHugePages()
+{
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (!tunables || std::string(tunables).find("glibc.malloc.hugetlb=1") == std::string::npos) return false;
+  std::FILE* file = std::fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");
+  if (!file) return false;
+  char line[128] = {0};
+  const bool read = std::fgets(line, sizeof line, file) != nullptr;
+  std::fclose(file);
+  const std::string mode = read ? line : "";
+  return mode.find("[always]") != std::string::npos || mode.find("[madvise]") != std::string::npos;
+}
+
 /** Keeps freed memory in the process (see the top of this file). \returns whether the policy is
   * in effect (false without glibc, or when UC_BENCH_MALLOC_DEFAULTS is set). */
 inline bool retainFreedMemory()
 {
-  const char* keep = std::getenv("UC_BENCH_MALLOC_DEFAULTS");
-  if (keep && *keep && std::string(keep) != "0") return false;
+  if (mallocDefaultsAsked()) return false;
 #if defined(__GLIBC__)
   const bool trim = mallopt(M_TRIM_THRESHOLD, 1 << 30) == 1;  // (never reached: the heap keeps its top)
   const bool mapped = mallopt(M_MMAP_THRESHOLD, 32 << 20) == 1; // (glibc's largest: bigger blocks are mapped)
@@ -64,11 +116,12 @@ inline bool retainFreedMemory()
 /** A line for the benchmark's header: the heap policy in effect and the measured page-fault cost. */
 inline std::string heapPolicyNote(bool retained)
 {
-  char text[256];
+  char text[320];
   std::snprintf(text, sizeof text,
-                "heap: %s; a first touch of a fresh 4 KiB page costs %.2f us here",
+                "heap: %s, %s; a first touch of a fresh 4 KiB page costs %.2f us here",
                 retained ? "freed memory kept in the process (no trim, mmap above 32 MiB only; HeapPolicy.h)"
                          : "glibc's defaults (freed memory returned to the kernel)",
+                heapHugePages() ? "transparent huge pages on request (glibc.malloc.hugetlb=1)" : "4 KiB pages",
                 pageFaultMicroseconds());
   return text;
 }

@@ -727,6 +727,7 @@ private:
 /** Entry point: see the usage text at the top of this file. */
 int main(int argc, char** argv)
 {
+  bench::useHugePagesForHeap(argv);  // (may re-execute with GLIBC_TUNABLES: see HeapPolicy.h)
   bench::ensureOpenBlasCore(argv);  // (may re-execute with OPENBLAS_CORETYPE: see BlasCore.h)
   const bool heapRetained = bench::retainFreedMemory();  // (every method alike: see HeapPolicy.h)
   Options options;
