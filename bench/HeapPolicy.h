@@ -11,15 +11,16 @@
 // allocations up to 32 MiB from the heap (mallopt), for every method in the process alike: a long-
 // running application (an interactive editor) reaches the same state once its heap has grown.
 //
-// The heap is also backed by transparent huge pages where the kernel offers them on request
-// (useHugePagesForHeap(): the benchmark re-executes itself once with GLIBC_TUNABLES=
-// glibc.malloc.hugetlb=1, so that malloc asks for them with madvise). With 4 KiB pages the cost of
-// a pass over a large factor depended on what else the process held: armadillo_loop2, one solve
-// (a pass over L): 33-35 ms with our solver alone in the process, 50-86 ms with the peers' factors
-// and dense blocks resident, with no page fault in either; with huge pages, 36-42 ms in both. A
-// TLB miss per 4 KiB of a factor read once is what a solve is charged for, and how much each miss
-// costs depends on where the process's other memory lies; huge pages take that away for every
-// method alike.
+// With UC_BENCH_HUGE_PAGES=1 the heap is also backed by transparent huge pages where the kernel
+// offers them on request (useHugePagesForHeap(): the benchmark re-executes itself once with
+// GLIBC_TUNABLES=glibc.malloc.hugetlb=1, so that malloc asks for them with madvise). With 4 KiB
+// pages the cost of a pass over a large factor depends on what else the process holds:
+// armadillo_loop2, one solve (a pass over L): 33-35 ms with our solver alone in the process, 50-86
+// ms with the peers' factors and dense blocks resident, with no page fault in either (nor helper
+// threads: OMP/OpenBLAS at one thread change nothing; nor background work: half a second's pause
+// before each run changes nothing); with huge pages, 36-42 ms in both. Huge pages are not the
+// default: on bunny's 2000-vertex cuts they made insertDofs slower (18.0-19.9 ms against 16.1-17.0
+// with 4 KiB pages, removeDofs unchanged), which the comparison of the two must not be charged.
 // Set UC_BENCH_MALLOC_DEFAULTS=1 to keep glibc's defaults (neither policy).
 
 #ifndef UPDATABLE_CHOLESKY_BENCH_HEAPPOLICY_H
@@ -63,12 +64,15 @@ inline bool mallocDefaultsAsked()
   return keep && *keep && std::string(keep) != "0";
 }
 
-/** Re-executes this program once with glibc.malloc.hugetlb=1 added to GLIBC_TUNABLES (see the top
-  * of this file), unless it is there already or UC_BENCH_MALLOC_DEFAULTS is set. Call first thing
-  * in main(); returns when nothing is to be done or the re-execution failed. */
+/** When UC_BENCH_HUGE_PAGES=1, re-executes this program once with glibc.malloc.hugetlb=1 added to
+  * GLIBC_TUNABLES (see the top of this file), unless it is there already or UC_BENCH_MALLOC_DEFAULTS
+  * is set. Call first thing in main(); returns when nothing is to be done or the re-execution
+  * failed. */
 inline void useHugePagesForHeap(char** argv)
 {
 #if defined(__GLIBC__)
+  const char* asked = std::getenv("UC_BENCH_HUGE_PAGES");
+  if (!asked || std::string(asked) != "1") return;
   if (mallocDefaultsAsked() || std::getenv("UC_BENCH_HUGE_PAGES_REEXEC")) return;
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   std::string value = tunables ? tunables : "";
