@@ -434,12 +434,20 @@ std::vector<Index> ownersOfRewrites(const SupernodalFactor<Scalar, StorageIndex>
 
 /** \internal Writes into \a out the fresh \a entries (columns below \a columns) ordered by column,
   * then by source, the order remapAssemblyMaps() reads them in (the source breaks ties so that the
-  * maps do not depend on the order the entries were found in). A count per column then a pass of
-  * insertion sort within each column (a few entries): linear, where a comparison sort of the tens
-  * of thousands of entries of a long cut pays a log factor. \a count: scratch. */
+  * maps do not depend on the order the entries were found in). Few entries (a short cut) are
+  * sorted, so that the cost is that of the entries, not of \a columns; many (a long cut: tens of
+  * thousands) are counted per column, then insertion-sorted within each column (a few entries):
+  * linear, where the comparison sort pays a log factor. \a count: scratch. */
 template <typename StorageIndex>
 void sortFreshEntries(const std::vector<FreshEntry<StorageIndex> >& entries, Index columns,
                       std::vector<StorageIndex>& count, std::vector<FreshEntry<StorageIndex> >& out) {
+  if (Index(entries.size()) * 16 < columns) {  // few: sorted
+    out.assign(entries.begin(), entries.end());
+    std::sort(out.begin(), out.end(), [](const FreshEntry<StorageIndex>& a, const FreshEntry<StorageIndex>& b) {
+      return a.col != b.col ? a.col < b.col : a.source < b.source;
+    });
+    return;
+  }
   count.assign(columns + 1, StorageIndex(0));
   for (const auto& e : entries) ++count[Index(e.col) + 1];
   for (Index j = 0; j < columns; ++j) count[j + 1] += count[j];
