@@ -6,7 +6,8 @@
 // after the update reusing the kept forward substitution on the clean supernodes only, bitwise
 // equal to a full pass). Bad input
 // (wrong sizes, an origin out of range or pointing at a new dof, entries outside the duplicated
-// pattern, a matrix that is not positive definite) leaves the object as it was.
+// pattern, a matrix that is not positive definite, NaN or infinite entries) leaves the object as
+// it was.
 #include "test_checks.h"
 #include "test_config.h"
 #include "test_matrices.h"
@@ -14,6 +15,7 @@
 #include <unsupported/Eigen/MeshTools>
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -781,6 +783,50 @@ TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was",
     llt.insertDofs(toInput<Cfg>(Acut), origin);
     CHECK(llt.info() == Eigen::Success);
     checkAgainstFresh<Cfg>(llt, Acut, g, lowRankTolerance<Cfg>());
+  }
+  SUBCASE("NaN or infinity in the matrix, on every route: NumericalIssue and the object as it was") {
+    typedef typename Cfg::RealScalar Real;
+    const Scalar badValues[] = {Scalar(std::numeric_limits<Real>::quiet_NaN()), Scalar(std::numeric_limits<Real>::infinity())};
+    const Eigen::UpdateRoute routes[] = {Eigen::UpdateRoute::Automatic, Eigen::UpdateRoute::PartialRefactorization,
+                                         Eigen::UpdateRoute::Refactorization, Eigen::UpdateRoute::Mixed};
+    const Index copy = n, from = origin[n], far = n - 1;  // (far: not a neighbour of the copies' origins)
+    Index neighbour = -1;  // an entry of the copy's column off the diagonal
+    for (typename FullMatrix::InnerIterator it(Acut, copy); it && neighbour < 0; ++it)
+      if (it.row() != copy) neighbour = it.row();
+    REQUIRE(neighbour >= 0);
+    for (const Eigen::UpdateRoute route : routes)
+      for (const Scalar bad : badValues)
+        for (int where = 0; where < 4; ++where) {
+          CAPTURE(int(route));
+          CAPTURE(where);
+          llt.setUpdateRoute(route);
+          FullMatrix cut = Acut;
+          if (where == 0) cut.coeffRef(copy, copy) = bad;             // a copy's pivot
+          if (where == 1) {                                            // a copy's entry off the diagonal
+            cut.coeffRef(neighbour, copy) = bad;
+            cut.coeffRef(copy, neighbour) = bad;
+          }
+          if (where == 2) cut.coeffRef(from, from) = bad;              // an origin's pivot
+          if (where == 3) cut.coeffRef(far, far) = bad;                // an old dof far from the cut
+          cut.makeCompressed();
+          llt.insertDofs(toInput<Cfg>(cut), origin);
+          CHECK(llt.info() == Eigen::NumericalIssue);
+          unchanged();
+        }
+    llt.setUpdateRoute(Eigen::UpdateRoute::Automatic);
+    llt.insertDofs(toInput<Cfg>(Acut), origin);  // and it still cuts, and merges only good values
+    REQUIRE(llt.info() == Eigen::Success);
+    for (const Scalar bad : badValues) {
+      FullMatrix merged = A;
+      merged.coeffRef(from, from) = bad;
+      llt.mergeDofs(toInput<Cfg>(merged), origin);
+      CHECK(llt.info() == Eigen::NumericalIssue);
+      CHECK(llt.rows() == Acut.rows());
+      checkAgainstFresh<Cfg>(llt, Acut, g);
+    }
+    llt.mergeDofs(toInput<Cfg>(A), origin);
+    CHECK(llt.info() == Eigen::Success);
+    unchanged();
   }
   SUBCASE("bad merges") {
     llt.insertDofs(toInput<Cfg>(Acut), origin);
