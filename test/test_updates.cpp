@@ -5,7 +5,8 @@
 // accuracy for the low-rank route; the solves that reuse the previous forward substitution are
 // bitwise full ones. Also Dirichlet solves (B empty, random, all; 1 to 5
 // right-hand sides), and every error path (bad indices,
-// pattern mismatch, an update that is not positive definite) leaving a usable object.
+// pattern mismatch, an update that is not positive definite or holds NaN or infinity) leaving a
+// usable object.
 #include "test_checks.h"
 #include "test_config.h"
 #include "test_matrices.h"
@@ -13,6 +14,7 @@
 #include <unsupported/Eigen/MeshTools>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 
 namespace {
@@ -403,6 +405,38 @@ TEST_CASE_TEMPLATE("bad update input gives a clear error and a usable object", C
     stillSolvesA();
     // and the object goes on updating
     llt.removeDofs(std::vector<int>{1, 2});
+    CHECK(llt.info() == Eigen::Success);
+  }
+  SUBCASE("NaN or infinity in an updated column, on every route, leaves the previous factor") {
+    typedef typename Cfg::RealScalar Real;
+    const Scalar badValues[] = {Scalar(std::numeric_limits<Real>::quiet_NaN()), Scalar(std::numeric_limits<Real>::infinity())};
+    const Eigen::UpdateRoute routes[] = {Eigen::UpdateRoute::Automatic, Eigen::UpdateRoute::PartialRefactorization,
+                                         Eigen::UpdateRoute::Refactorization};
+    const Index column = n / 2;
+    Index row = -1;  // an entry of that column off the diagonal
+    for (typename Cfg::FullMatrix::InnerIterator it(A, column); it && row < 0; ++it)
+      if (it.row() != column) row = it.row();
+    REQUIRE(row >= 0);
+    for (const Eigen::UpdateRoute route : routes)
+      for (const Scalar bad : badValues)
+        for (const bool diagonal : {true, false}) {
+          CAPTURE(int(route));
+          CAPTURE(diagonal);
+          llt.setUpdateRoute(route);
+          typename Cfg::FullMatrix changed = A;
+          if (diagonal) {
+            changed.coeffRef(column, column) = bad;
+          } else {
+            changed.coeffRef(row, column) = bad;
+            changed.coeffRef(column, row) = bad;
+          }
+          llt.updateColumns(toInput<Cfg>(changed), diagonal ? std::vector<int>{int(column)}
+                                                            : std::vector<int>{int(column), int(row)});
+          CHECK(llt.info() == Eigen::NumericalIssue);
+          stillSolvesA();
+        }
+    llt.setUpdateRoute(Eigen::UpdateRoute::Automatic);
+    llt.removeDofs(std::vector<int>{1, 2});  // and the object goes on updating
     CHECK(llt.info() == Eigen::Success);
   }
 }
