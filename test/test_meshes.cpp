@@ -137,6 +137,73 @@ TEST_CASE_TEMPLATE("cotan Laplacians of real meshes", Cfg, UC_CORE_CONFIGS) {
   for (const Mesh& mesh : meshes) checkMesh<Cfg>(mesh);
 }
 
+TEST_CASE("updates with 2 threads recompute independent dirty subtrees at once (bunny)") {
+  // bunny: large enough that the dirty supernodes of these updates hold more than
+  // MinParallelFlops of work, so the partial refactorization splits them among the threads
+  typedef d_int_col_lower_amd Cfg;
+  const std::vector<Mesh> meshes = sharedMeshes({"bunny"});
+  for (const Mesh& mesh : meshes) {
+    const Cfg::FullMatrix A = laplacianPlusShift<Cfg>(mesh);
+    const Index n = A.rows();
+    Cfg::Solver one, two;
+    one.setThreadCount(1);
+    two.setThreadCount(2);
+    for (Cfg::Solver* s : {&one, &two}) {
+      s->setUpdateCaching(true);
+      s->setUpdateRoute(Eigen::UpdateRoute::PartialRefactorization);
+      s->compute(A);
+      REQUIRE(s->info() == Eigen::Success);
+    }
+    // B = D A D with D = 1.5 on the first half of the vertices, 1 on the others (positive
+    // definite): the columns of the first half and of their neighbours change, most of the tree
+    // is dirty
+    Cfg::FullMatrix B = A;
+    std::vector<int> columns;
+    for (Index j = 0; j < B.outerSize(); ++j) {
+      bool changed = false;
+      for (Cfg::FullMatrix::InnerIterator it(B, j); it; ++it) {
+        const double scale = (it.row() < n / 2 ? 1.5 : 1.0) * (it.col() < n / 2 ? 1.5 : 1.0);
+        it.valueRef() *= scale;
+        changed = changed || scale != 1.0;
+      }
+      if (changed) columns.push_back(int(j));
+    }
+    for (Cfg::Solver* s : {&one, &two}) {
+      s->updateColumns(B, columns);
+      REQUIRE(s->info() == Eigen::Success);
+      CHECK(s->lastUpdate().route == Eigen::UpdateRoute::PartialRefactorization);
+    }
+    REQUIRE(two.lastUpdate().flops > 2 * Eigen::internal::updatable_cholesky::MinParallelFlops);
+    Cfg::Reference refB(B);
+    checkAgainstReference<Cfg>(two, B, refB);
+    CHECK(factorDifference<Cfg>(two, one) <= 1e3 * std::numeric_limits<double>::epsilon());
+    Cfg::Solver fresh;
+    fresh.setThreadCount(2);
+    fresh.compute(B);
+    CHECK(factorDifference<Cfg>(two, fresh) <= 1e3 * std::numeric_limits<double>::epsilon());
+    // a Dirichlet removal of a third of the dofs, refactored in part
+    std::vector<int> removed;
+    for (Index j = n / 3; j < 2 * n / 3; ++j) removed.push_back(int(j));
+    for (Cfg::Solver* s : {&one, &two}) {
+      s->removeDofs(removed);
+      REQUIRE(s->info() == Eigen::Success);
+    }
+    CHECK(factorDifference<Cfg>(two, one) <= 1e3 * std::numeric_limits<double>::epsilon());
+    const Cfg::Dense b = Cfg::Dense::Ones(n, 1);
+    const Cfg::Dense x1 = one.solveDirichlet(b, b), x2 = two.solveDirichlet(b, b);
+    CHECK(double((x1 - x2).norm() / x1.norm()) <= 1e-8);
+    // and a failed update on 2 threads leaves the previous factor
+    Cfg::FullMatrix bad = B;
+    bad.coeffRef(0, 0) = -1.0;
+    two.restoreDofs(removed);
+    REQUIRE(two.info() == Eigen::Success);
+    two.updateColumns(bad, columns);
+    CHECK(two.info() == Eigen::NumericalIssue);
+    const Cfg::Dense xr = refB.solve(b), xt = two.solve(b);
+    CHECK(double((xt - xr).norm() / xr.norm()) <= 1e-6);
+  }
+}
+
 TEST_CASE("a real mesh with 2 threads, refactorized with new values") {
   typedef d_int_col_lower_amd Cfg;
   const std::vector<Mesh> meshes = sharedMeshes({"camelhead"});

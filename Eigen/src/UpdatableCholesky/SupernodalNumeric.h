@@ -7,7 +7,9 @@
 //
 // Parallelism: the supernodal tree is split into independent subtrees of balanced work
 // (SubtreeSchedule), factored at once by worker threads with single-threaded BLAS; the
-// supernodes above them (the top separators) follow with multi-threaded BLAS.
+// supernodes above them (the top separators) follow with multi-threaded BLAS. A
+// refactorization of some supernodes only (the updates) splits the forest those supernodes
+// form in the same way (ListSchedule).
 //
 // Failure: the first pivot that is not positive and finite stops the factorization; the
 // permuted column is reported. The factor is then incomplete and must not be used to solve.
@@ -43,6 +45,39 @@ constexpr Index AssemblyPrefetchDistance = 16;
 /** \internal Below this many flops a factorization runs on one thread. */
 constexpr double MinParallelFlops = 2e7;
 
+/** \internal The greedy split of makeSchedule() and makeListSchedule(): the subtrees rooted at
+  * \a frontier (work per root in \a work, \a total in all) go, heaviest first, to the least
+  * loaded of \a threads bins; while the bins differ by more than 10% (and the frontier still
+  * holds half the work), the heaviest root is flagged in \a isTop and replaced by its children
+  * (\a expand(root, frontier) appends them, and returns false for a leaf, which ends the
+  * split). \returns the bins (roots per worker). */
+template <typename Expand>
+std::vector<std::vector<Index> > balanceSubtrees(std::vector<Index> frontier, const std::vector<double>& work,
+                                                 double total, int threads, std::vector<char>& isTop, Expand&& expand) {
+  std::vector<std::vector<Index> > bins;
+  for (int iteration = 0; iteration < 4096; ++iteration) {
+    std::sort(frontier.begin(), frontier.end(), [&](Index a, Index b) { return work[a] > work[b]; });
+    bins.assign(threads, std::vector<Index>());
+    std::vector<double> load(threads, 0.0);
+    double frontierWork = 0;
+    for (Index s : frontier) {
+      const int t = int(std::min_element(load.begin(), load.end()) - load.begin());
+      load[t] += work[s];
+      bins[t].push_back(s);
+      frontierWork += work[s];
+    }
+    const double maxLoad = *std::max_element(load.begin(), load.end());
+    if (maxLoad <= 1.1 * frontierWork / threads || frontierWork < 0.5 * total) break;
+    const Index heaviest = frontier.front();
+    std::vector<Index> children;
+    if (!expand(heaviest, children)) break;
+    isTop[heaviest] = 1;
+    frontier.erase(frontier.begin());
+    frontier.insert(frontier.end(), children.begin(), children.end());
+  }
+  return bins;
+}
+
 /** \internal Splits the tree for \a threads workers: repeatedly replaces the heaviest subtree
   * by its children until a greedy assignment of subtrees to workers is balanced to 10%. */
 template <typename Scalar, typename StorageIndex>
@@ -70,30 +105,85 @@ SubtreeSchedule makeSchedule(const SupernodalFactor<Scalar, StorageIndex>& f, in
     return sched;
   }
   std::vector<char> isTop(ns, 0);
-  std::vector<std::vector<Index> > bins;
-  for (int iteration = 0; iteration < 4096; ++iteration) {
-    std::sort(frontier.begin(), frontier.end(), [&](Index a, Index b) { return work[a] > work[b]; });
-    bins.assign(threads, std::vector<Index>());
-    std::vector<double> load(threads, 0.0);
-    double frontierWork = 0;
-    for (Index s : frontier) {
-      const int t = int(std::min_element(load.begin(), load.end()) - load.begin());
-      load[t] += work[s];
-      bins[t].push_back(s);
-      frontierWork += work[s];
-    }
-    const double maxLoad = *std::max_element(load.begin(), load.end());
-    if (maxLoad <= 1.1 * frontierWork / threads || frontierWork < 0.5 * total) break;
-    const Index heaviest = frontier.front();
-    if (f.firstChild[heaviest] == -1) break;
-    isTop[heaviest] = 1;
-    frontier.erase(frontier.begin());
-    for (Index c = f.firstChild[heaviest]; c != -1; c = f.nextSibling[c]) frontier.push_back(c);
-  }
+  std::vector<std::vector<Index> > bins =
+      balanceSubtrees(frontier, work, total, threads, isTop, [&](Index s, std::vector<Index>& children) {
+        for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) children.push_back(c);
+        return !children.empty();
+      });
   for (auto& bin : bins) std::sort(bin.begin(), bin.end());
   sched.workerRoots = bins;
   for (Index s = 0; s < ns; ++s)
     if (isTop[s]) sched.top.push_back(s);
+  return sched;
+}
+
+/** \internal Work of a front counted beside its flops when the threads are balanced: a small
+  * front costs a few microseconds of calls and cache misses whatever its flops. */
+constexpr double FrontOverheadFlops = 2.5e4;
+
+/** \internal Which entries of a refactorization list (supernodes, increasing, each after the
+  * listed ones below it) each thread recomputes. Within the list, a supernode's parent is its
+  * parent in the tree when that is listed too; the list is a forest under that relation. Workers
+  * take whole subtrees of the forest, balanced by work as makeSchedule() splits the whole tree;
+  * the rest ("top") follows in order with threaded BLAS. */
+struct ListSchedule {
+  Index workers = 0;         ///< 0: the whole list on the calling thread
+  std::vector<Index> owner;  ///< per list entry, its worker, or -1 for the top
+};
+
+/** \internal Splits \a list for \a threads workers (see ListSchedule); a list of less than
+  * MinParallelFlops of work stays on one thread. \a position: scratch by supernode, all zero on
+  * entry and on return. */
+template <typename Scalar, typename StorageIndex>
+ListSchedule makeListSchedule(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& list,
+                              int threads, std::vector<Index>& position) {
+  ListSchedule sched;
+  const Index count = Index(list.size());
+  if (threads <= 1 || count < 2) return sched;
+  if (Index(position.size()) < f.count()) position.resize(f.count(), 0);
+  for (Index k = 0; k < count; ++k) position[list[k]] = k + 1;
+  std::vector<Index> up(count);  // the parent's entry in the list, or -1
+  std::vector<double> work(count);
+  for (Index k = 0; k < count; ++k) {
+    const Index p = f.parent[list[k]];
+    up[k] = p == -1 ? Index(-1) : position[p] - 1;
+    work[k] = f.nodes[list[k]].flops() + FrontOverheadFlops;
+  }
+  for (Index k = 0; k < count; ++k) position[list[k]] = 0;
+  std::vector<Index> childStart(count + 1, 0), children(count);
+  for (Index k = 0; k < count; ++k)  // (children come before their parents)
+    if (up[k] >= 0) {
+      eigen_assert(up[k] > k && "makeListSchedule: a listed parent before its child");
+      work[up[k]] += work[k];
+      ++childStart[up[k] + 1];
+    }
+  double total = 0;
+  std::vector<Index> frontier;
+  for (Index k = 0; k < count; ++k) {
+    childStart[k + 1] += childStart[k];
+    if (up[k] < 0) {
+      frontier.push_back(k);
+      total += work[k];
+    }
+  }
+  if (total < MinParallelFlops) return sched;
+  {
+    std::vector<Index> fill(childStart.begin(), childStart.end() - 1);
+    for (Index k = 0; k < count; ++k)
+      if (up[k] >= 0) children[fill[up[k]]++] = k;
+  }
+  std::vector<char> isTop(count, 0);
+  const std::vector<std::vector<Index> > bins =
+      balanceSubtrees(frontier, work, total, threads, isTop, [&](Index k, std::vector<Index>& below) {
+        below.assign(children.begin() + childStart[k], children.begin() + childStart[k + 1]);
+        return !below.empty();
+      });
+  sched.workers = threads;
+  sched.owner.assign(count, -1);
+  for (int t = 0; t < threads; ++t)
+    for (Index k : bins[t]) sched.owner[k] = t;
+  for (Index k = count - 1; k >= 0; --k)  // (parents first) below a subtree's root, its worker
+    if (!isTop[k] && sched.owner[k] < 0 && up[k] >= 0) sched.owner[k] = sched.owner[up[k]];
   return sched;
 }
 
@@ -257,16 +347,32 @@ class SupernodalNumeric {
     * input and their children's update matrices, the clean ones taken from the cache (which
     * must hold the update matrices of every clean child of a dirty supernode, as after a
     * factorize() or refactorize() with caching on, even a failed refactorize() of the same
-    * dirty set). Gives the same values as a full factorize() of the same input.
+    * dirty set). Gives the same values as a full factorize() of the same input. With several
+    * \a threads, independent subtrees of the list are recomputed at once (ListSchedule).
     * \returns -1 on success or the permuted column of the first bad pivot; on failure the
     * cache is invalid and the factor incomplete. */
   Index refactorize(Factor& f, const Input& in, const std::vector<Index>& dirty, int threads) {
     eigen_assert(m_cacheUpdates && Index(m_cache.size()) == f.count() && "refactorize() needs cached update matrices");
     m_failed.store(-1);
     m_cacheValid = false;
-    const int previousBlas = setBlasThreads(threads);
-    for (Index s : dirty)
-      if (!factorNode(f, s, in, 0)) break;
+    const ListSchedule sched = makeListSchedule(f, dirty, threads, m_listPosition);
+    const Index workers = sched.workers, count = Index(dirty.size());
+    if (Index(m_stacks.size()) < workers + 1) m_stacks.resize(workers + 1);  // (scratch only: the update matrices are cached)
+    const int previousBlas = setBlasThreads(workers > 0 ? 1 : threads);
+    if (workers > 0) {  // independent subtrees of the list at once, then the rest with threaded BLAS
+      auto work = [&](Index w) {
+        for (Index k = 0; k < count; ++k)
+          if (sched.owner[k] == w && !factorNode(f, dirty[k], in, w)) return;
+      };
+      std::vector<std::thread> pool;
+      for (Index w = 1; w < workers; ++w) pool.emplace_back(work, w);
+      work(0);
+      for (auto& t : pool) t.join();
+      setBlasThreads(threads);
+    }
+    for (Index k = 0; k < count; ++k)
+      if (workers == 0 || sched.owner[k] < 0)
+        if (!factorNode(f, dirty[k], in, workers)) break;
     if (previousBlas > 0) setBlasThreads(previousBlas);
     m_cacheValid = m_failed.load() < 0;
     return m_failed.load();
@@ -530,6 +636,7 @@ class SupernodalNumeric {
   SubtreeSchedule m_schedule;
   std::vector<Location> m_location;
   std::vector<UpdateStack<Scalar> > m_stacks;
+  std::vector<Index> m_listPosition;  ///< scratch of makeListSchedule(), all zero between calls
   std::vector<UpdateBuffer<Scalar> > m_cache;  ///< per supernode update matrix, when caching
   std::vector<std::vector<Correction> > m_pending;  ///< per supernode deferred corrections U += ±W W^H
   bool m_cacheUpdates = false, m_cacheValid = false;

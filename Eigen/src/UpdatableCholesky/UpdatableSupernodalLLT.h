@@ -165,10 +165,11 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   /** \returns the floating-point operations of one numeric factorization (dense kernels). */
   double factorizationFlops() const { return m_factor.flops(); }
 
-  /** Sets the number of threads of factorize() (independent subtrees at once, threaded BLAS on
-    * the top separators). 0 means Eigen::nbThreads(). */
+  /** Sets the number of threads of factorize() and of the updates' refactorizations
+    * (independent subtrees at once, threaded BLAS on the top separators). 0 means
+    * Eigen::nbThreads(). */
   void setThreadCount(int threads) { m_threads = threads < 0 ? 0 : threads; }
-  /** \returns the number of threads factorize() uses. */
+  /** \returns the number of threads factorize() and the updates use. */
   int threadCount() const { return m_threads > 0 ? m_threads : Eigen::nbThreads(); }
 
   /** Sets the relaxed-amalgamation thresholds used by the next analyzePattern(). */
@@ -681,8 +682,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
     lowRankRemovalFlops(m_factor, dirty, permutedColumns, m_workspace);  // per-supernode costs
     mixedFlops = mixedRemovalPlan(m_factor, dirty, m_workspace, lowPart, topPart, removedFlags);
   }
-  if (route == UpdateRoute::Automatic) {  // the full factorization runs on all threads
-    const double full = totalFlops / threadCount();
+  if (route == UpdateRoute::Automatic) {  // (both refactorizations run on all threads: compared by flops)
+    const double full = totalFlops;
     route = dirtyFlops > 0.9 * full ? UpdateRoute::Refactorization : UpdateRoute::PartialRefactorization;
     if (isRemoval && mixedFlops < (std::min)(dirtyFlops, full))
       route = topPart.empty() ? UpdateRoute::LowRank : lowPart.empty() ? UpdateRoute::PartialRefactorization
@@ -1283,7 +1284,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   UpdateRoute route = top.empty() ? UpdateRoute::PartialRefactorization : UpdateRoute::Mixed;
   const bool forced = m_route != UpdateRoute::Automatic;  // (a forced Mixed or partial route stays)
   if (m_route == UpdateRoute::Refactorization || !m_numeric.hasCachedUpdates() ||
-      (!forced && plannedFlops * threadCount() > 0.9 * totalFlops))
+      (!forced && plannedFlops > 0.9 * totalFlops))
     route = UpdateRoute::Refactorization;
   double spentFlops = route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops;
   auto run = [&]() -> Index {
