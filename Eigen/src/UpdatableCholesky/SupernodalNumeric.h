@@ -49,12 +49,13 @@ constexpr double MinParallelFlops = 2e7;
   * \a frontier (work per root in \a work, \a total in all) go, heaviest first, to the least
   * loaded of \a threads bins; while the bins differ by more than 10% (and the frontier still
   * holds half the work), the heaviest root is flagged in \a isTop and replaced by its children
-  * (\a expand(root, frontier) appends them, and returns false for a leaf, which ends the
-  * split). \returns the bins (roots per worker). */
+  * (\a expand(root, children) writes them into the empty \a children and returns false for a
+  * leaf, which ends the split). \returns the bins (roots per worker). */
 template <typename Expand>
 std::vector<std::vector<Index> > balanceSubtrees(std::vector<Index> frontier, const std::vector<double>& work,
                                                  double total, int threads, std::vector<char>& isTop, Expand&& expand) {
   std::vector<std::vector<Index> > bins;
+  std::vector<Index> children;
   for (int iteration = 0; iteration < 4096; ++iteration) {
     std::sort(frontier.begin(), frontier.end(), [&](Index a, Index b) { return work[a] > work[b]; });
     bins.assign(threads, std::vector<Index>());
@@ -69,7 +70,7 @@ std::vector<std::vector<Index> > balanceSubtrees(std::vector<Index> frontier, co
     const double maxLoad = *std::max_element(load.begin(), load.end());
     if (maxLoad <= 1.1 * frontierWork / threads || frontierWork < 0.5 * total) break;
     const Index heaviest = frontier.front();
-    std::vector<Index> children;
+    children.clear();
     if (!expand(heaviest, children)) break;
     isTop[heaviest] = 1;
     frontier.erase(frontier.begin());

@@ -683,9 +683,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
     mixedFlops = mixedRemovalPlan(m_factor, dirty, m_workspace, lowPart, topPart, removedFlags);
   }
   if (route == UpdateRoute::Automatic) {  // (both refactorizations run on all threads: compared by flops)
-    const double full = totalFlops;
-    route = dirtyFlops > 0.9 * full ? UpdateRoute::Refactorization : UpdateRoute::PartialRefactorization;
-    if (isRemoval && mixedFlops < (std::min)(dirtyFlops, full))
+    route = dirtyFlops > 0.9 * totalFlops ? UpdateRoute::Refactorization : UpdateRoute::PartialRefactorization;
+    if (isRemoval && mixedFlops < (std::min)(dirtyFlops, totalFlops))
       route = topPart.empty() ? UpdateRoute::LowRank : lowPart.empty() ? UpdateRoute::PartialRefactorization
                                                                          : UpdateRoute::Mixed;
   }
