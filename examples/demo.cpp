@@ -4,7 +4,8 @@
 // undo and one more cut. Every edit updates the one Cholesky factor in place (removeDofs for a cut,
 // restoreDofs for the undo) and lays the mesh out again; the demo prints, for every edit, the
 // update time next to the time of a fresh compute() of the same (cut) matrix, and writes a PNG of
-// the layout after every edit. At the end the layout is checked against BFF from scratch.
+// the layout after every edit. At the end the layout is checked against BFF from scratch. A mesh
+// with holes or handles is first cut to a disk (cutToDisk), a closed sphere along one path.
 //
 // Usage: demo [mesh.off[.gz]|.obj|.ply] [output-dir]   (default output dir: demo-out)
 // Exit code: 0 on success, 1 on any failure (with a message).
@@ -118,14 +119,37 @@ int main(int argc, char** argv)
   std::printf("mesh      %s: %lld vertices, %lld triangles, %zu boundary loops\n", path.c_str(), (long long)V.rows(),
               (long long)F.rows(), Eigen::boundaryLoops(F).size());
 
-  // 2. A closed mesh is first cut open along one path (a path cuts a sphere to a disk).
+  // 2. BFF lays out disks. A closed sphere is first cut open along one path; a mesh with holes or
+  //    handles is cut to a disk along a cut graph (cutToDisk: paths joining the holes, loops
+  //    around the handles), which then is the mesh the session edits.
+  const Eigen::MeshTopology topology = Eigen::meshTopology(F);
   std::vector<int> initialSeam;
-  if (Eigen::boundaryLoops(F).empty())
+  if (topology.components != 1)
+  {
+    std::fprintf(stderr, "demo: the mesh is in %lld pieces; BFF lays out one piece\n", (long long)topology.components);
+    return 1;
+  }
+  if (topology.genus == 0 && topology.boundaryLoops == 0)
   {
     Eigen::Index far = 0;
     (V.rowwise() - V.row(0)).rowwise().squaredNorm().maxCoeff(&far);
     initialSeam = Eigen::shortestEdgePath(V, F, 0, int(far));
     std::printf("closed    cut open along a path of %zu vertices first\n", initialSeam.size());
+  }
+  else if (!topology.isDisk())
+  {
+    Eigen::MatrixXd Vdisk;
+    Eigen::MatrixXi Fdisk;
+    Eigen::VectorXi origin;
+    if (!Eigen::cutMeshToDisk(V, F, Vdisk, Fdisk, origin, &error))
+    {
+      std::fprintf(stderr, "demo: %s\n", error.c_str());
+      return 1;
+    }
+    std::printf("genus %lld, %lld boundary loops: cut to a disk first (%lld vertices copied)\n",
+                (long long)topology.genus, (long long)topology.boundaryLoops, (long long)(Vdisk.rows() - V.rows()));
+    V.swap(Vdisk);
+    F.swap(Fdisk);
   }
 
   // 3. BFF: factor the cotan Laplacian of the whole mesh once (METIS), remove the boundary,

@@ -1,8 +1,9 @@
 // Mesh topology tools of unsupported/Eigen/MeshTools against independent oracles: boundaryLoops
 // (loop count, length, orientation by signed area), shortestEdgePath (breadth-first search and
 // Floyd-Warshall on small grids), cutMesh / cutMeshAlongPath (vertex copies, Euler
-// characteristic, face correspondence through origin, boundary edges, disks from trees), and
-// massMatrix (total area, positive diagonal, hand-computed triangles).
+// characteristic, face correspondence through origin, boundary edges, disks from trees),
+// meshTopology (counts against independent ones on disks, spheres, tori, holes, pieces),
+// cutToDisk (the cut meshes are disks, no dangling cuts) and massMatrix (total area, positive diagonal, hand-computed triangles).
 #include <doctest/doctest.h>
 
 #include <unsupported/Eigen/MeshTools>
@@ -523,6 +524,208 @@ TEST_CASE("massMatrix: hand-computed triangles, total area, positive diagonal") 
   V.row(V.rows() - 1).setZero();
   M = Eigen::massMatrix(V, F);
   CHECK(M.coeff(V.rows() - 1, V.rows() - 1) == 0.0);
+}
+
+TEST_CASE("meshTopology: disk, sphere, torus, holes, pieces, against independent counts") {
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::gridMesh(6, 4, V, F);
+  Eigen::MeshTopology t = Eigen::meshTopology(F);
+  CHECK(t.vertices == 24);
+  CHECK(t.edges == Index(edgeUse(F).size()));
+  CHECK(t.faces == F.rows());
+  CHECK(t.eulerCharacteristic == 1);
+  CHECK(t.eulerCharacteristic == eulerCharacteristic(F));
+  CHECK(t.components == 1);
+  CHECK(t.boundaryLoops == 1);
+  CHECK(t.genus == 0);
+  CHECK(t.isDisk());
+
+  Eigen::icosphereMesh(2, V, F);
+  t = Eigen::meshTopology(F);
+  CHECK(t.eulerCharacteristic == 2);
+  CHECK(t.boundaryLoops == 0);
+  CHECK(t.genus == 0);
+  CHECK_FALSE(t.isDisk());
+
+  Eigen::torusMesh(12, 8, V, F);
+  t = Eigen::meshTopology(F);
+  CHECK(t.vertices == 96);
+  CHECK(t.edges == 3 * 96);
+  CHECK(t.eulerCharacteristic == 0);
+  CHECK(t.eulerCharacteristic == eulerCharacteristic(F));
+  CHECK(t.genus == 1);
+  CHECK_FALSE(t.isDisk());
+  // One face out: a torus with a hole is still genus 1, with one boundary loop; not a disk.
+  MatrixXi Fh = F.bottomRows(F.rows() - 1);
+  t = Eigen::meshTopology(Fh);
+  CHECK(t.boundaryLoops == 1);
+  CHECK(t.genus == 1);
+  CHECK_FALSE(t.isDisk());
+  // Cut along one meridian loop (around the tube): a tube, genus 0 with two boundary loops.
+  std::vector<std::array<int, 2>> meridian;
+  for (int j = 0; j < 8; ++j) meridian.push_back({3 * 8 + j, 3 * 8 + (j + 1) % 8});
+  MatrixXd Vcut;
+  MatrixXi Fcut;
+  VectorXi origin;
+  std::string error;
+  REQUIRE_MESSAGE(Eigen::cutMesh(V, F, meridian, Vcut, Fcut, origin, &error), error);
+  t = Eigen::meshTopology(Fcut);
+  CHECK(t.boundaryLoops == 2);
+  CHECK(t.genus == 0);
+  CHECK(t.components == 1);
+
+  // Two grids side by side: two pieces, each a disk, not a disk together; a vertex row of V
+  // that no face uses does not count.
+  Eigen::gridMesh(4, 4, V, F);
+  MatrixXi two(2 * F.rows(), 3);
+  two << F, (F.array() + 17).matrix();
+  t = Eigen::meshTopology(two);
+  CHECK(t.vertices == 32);
+  CHECK(t.components == 2);
+  CHECK(t.boundaryLoops == 2);
+  CHECK(t.eulerCharacteristic == 2);
+  CHECK(t.genus == 0);
+  CHECK_FALSE(t.isDisk());
+
+  // A grid with one vertex's fan removed: a hole, two loops.
+  Eigen::gridMesh(5, 5, V, F);
+  std::vector<int> keep;
+  for (Index f = 0; f < F.rows(); ++f)
+    if (F(f, 0) != 12 && F(f, 1) != 12 && F(f, 2) != 12) keep.push_back(int(f));
+  MatrixXi holed(Index(keep.size()), 3);
+  for (std::size_t k = 0; k < keep.size(); ++k) holed.row(Index(k)) = F.row(keep[k]);
+  t = Eigen::meshTopology(holed);
+  CHECK(t.boundaryLoops == 2);
+  CHECK(t.genus == 0);
+  CHECK(t.eulerCharacteristic == 0);
+
+  // Invalid or empty input: all zero.
+  t = Eigen::meshTopology(MatrixXi(0, 3));
+  CHECK(t.faces == 0);
+  CHECK(t.vertices == 0);
+  MatrixXi bad(1, 3);
+  bad << 0, -1, 2;
+  CHECK(Eigen::meshTopology(bad).faces == 0);
+}
+
+/** Cuts F along cutToDisk's edges and checks the result: a disk, every cut edge opened, no
+  * dangling cut (each end of a cut edge meets another cut or boundary edge, except the two ends
+  * of a closed sphere's path), faces kept. */
+void checkCutToDisk(const MatrixXd& V, const MatrixXi& F, std::size_t expectedEdges = std::size_t(-1)) {
+  std::vector<std::array<int, 2>> cuts;
+  std::string error;
+  REQUIRE_MESSAGE(Eigen::cutToDisk(F, cuts, &error), error);
+  CHECK(error.empty());
+  if (expectedEdges != std::size_t(-1)) CHECK(cuts.size() == expectedEdges);
+  const auto use = edgeUse(F);
+  std::map<int, int> degree;  // cut and boundary edges at each vertex
+  std::set<std::pair<int, int>> distinct;
+  for (const auto& e : cuts) {
+    const std::pair<int, int> key{std::min(e[0], e[1]), std::max(e[0], e[1])};
+    CHECK(use.count(key) == 1);
+    CHECK(use.at(key) == 2);  // an interior edge
+    distinct.insert(key);
+    ++degree[e[0]];
+    ++degree[e[1]];
+  }
+  CHECK(distinct.size() == cuts.size());
+  bool closed = true;
+  for (const auto& entry : use)
+    if (entry.second == 1) {
+      closed = false;
+      ++degree[entry.first.first];
+      ++degree[entry.first.second];
+    }
+  if (!closed || cuts.size() > 2)  // (a closed sphere's path of two edges has two ends)
+    for (const auto& e : cuts) {
+      CHECK(degree[e[0]] >= 2);
+      CHECK(degree[e[1]] >= 2);
+    }
+  MatrixXd Vcut;
+  MatrixXi Fcut;
+  VectorXi origin;
+  if (cuts.empty()) {
+    CHECK(Eigen::meshTopology(F).isDisk());
+    return;
+  }
+  REQUIRE_MESSAGE(Eigen::cutMesh(V, F, cuts, Vcut, Fcut, origin, &error), error);
+  checkCutCorrespondence(V, F, Vcut, Fcut, origin);
+  checkCutEdgesOpened(F, Fcut, origin, cuts);
+  const Eigen::MeshTopology t = Eigen::meshTopology(Fcut);
+  CHECK(t.isDisk());
+  CHECK(t.faces == F.rows());
+}
+
+TEST_CASE("cutToDisk: spheres, tori, holes and real meshes become disks; bad meshes are refused") {
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::gridMesh(6, 5, V, F);
+  checkCutToDisk(V, F, 0);  // a disk already
+
+  Eigen::icosphereMesh(2, V, F);
+  checkCutToDisk(V, F, 2);  // a closed sphere: a path of two edges
+
+  Eigen::torusMesh(16, 9, V, F);
+  checkCutToDisk(V, F);  // genus 1, closed
+  const MatrixXi holedTorus = F.bottomRows(F.rows() - 3);
+  checkCutToDisk(V, holedTorus);  // genus 1 with a hole
+
+  // A grid with two holes (the fans of two interior vertices removed): two joining paths.
+  Eigen::gridMesh(9, 9, V, F);
+  std::vector<int> keep;
+  for (Index f = 0; f < F.rows(); ++f) {
+    bool touches = false;
+    for (int c = 0; c < 3; ++c) touches = touches || F(f, c) == 20 || F(f, c) == 58;
+    if (!touches) keep.push_back(int(f));
+  }
+  MatrixXi holes(Index(keep.size()), 3);
+  for (std::size_t k = 0; k < keep.size(); ++k) holes.row(Index(k)) = F.row(keep[k]);
+  REQUIRE(Eigen::meshTopology(holes).boundaryLoops == 3);
+  checkCutToDisk(V, holes);
+
+  // Shared meshes of higher genus and with holes, when present.
+  for (const char* name : {"fertility.off.gz", "rocker-arm.off.gz", "bunny.off.gz"}) {
+    CAPTURE(name);
+    std::string error;
+    if (!Eigen::readOFF(std::string(UC_TEST_MESH_DIR) + "/" + name, V, F, &error)) {
+      MESSAGE("skipped, cannot read " << name << ": " << error);
+      continue;
+    }
+    const Eigen::MeshTopology before = Eigen::meshTopology(F);
+    MESSAGE(std::string(name) << ": genus " << before.genus << ", " << before.boundaryLoops << " boundary loops");
+    checkCutToDisk(V, F);
+  }
+
+  // Refused: a non-manifold edge, opposite orientations, two pieces, empty input.
+  std::vector<std::array<int, 2>> cuts{{7, 8}};
+  std::string error;
+  MatrixXi fin(3, 3);
+  fin << 0, 1, 2, 1, 0, 3, 0, 1, 4;
+  CHECK_FALSE(Eigen::cutToDisk(fin, cuts, &error));
+  CHECK(error.find("three or more") != std::string::npos);
+  MatrixXi flipped(2, 3);
+  flipped << 0, 1, 2, 0, 1, 3;
+  CHECK_FALSE(Eigen::cutToDisk(flipped, cuts, &error));
+  CHECK(error.find("consistently oriented") != std::string::npos);
+  MatrixXi pieces(2, 3);
+  pieces << 0, 1, 2, 3, 4, 5;
+  CHECK_FALSE(Eigen::cutToDisk(pieces, cuts, &error));
+  CHECK(error.find("one piece") != std::string::npos);
+  CHECK_FALSE(Eigen::cutToDisk(MatrixXi(0, 3), cuts, &error));
+  CHECK(cuts.size() == 1);  // untouched on failure
+
+  // cutMeshToDisk = cutToDisk + cutMesh: a torus becomes a disk, copies mapped to their origins.
+  Eigen::torusMesh(10, 7, V, F);
+  MatrixXd Vdisk;
+  MatrixXi Fdisk;
+  VectorXi origin;
+  REQUIRE_MESSAGE(Eigen::cutMeshToDisk(V, F, Vdisk, Fdisk, origin, &error), error);
+  CHECK(Eigen::meshTopology(Fdisk).isDisk());
+  checkCutCorrespondence(V, F, Vdisk, Fdisk, origin);
+  CHECK_FALSE(Eigen::cutMeshToDisk(V.topRows(5), F, Vdisk, Fdisk, origin, &error));  // F indexes past V
+  CHECK_FALSE(error.empty());
+  CHECK(Fdisk.rows() == F.rows());  // untouched on failure
 }
 
 TEST_CASE("boundaryLoops and cutMesh on a real mesh (camelhead)") {

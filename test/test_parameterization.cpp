@@ -358,6 +358,48 @@ TEST_CASE("Closed meshes: an initial seam cuts the sphere to a disk")
   CHECK((scratch.uv() - bff.uv()).cwiseAbs().maxCoeff() < 1e-9);
 }
 
+TEST_CASE("Meshes that are not disks after the cut are refused with their topology, not laid out")
+{
+  // A torus cut along one path has one boundary loop but keeps its handle (genus 1): no map to a
+  // disk exists, and a layout would fold over itself. Both layouts refuse and say why.
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  Eigen::torusMesh(24, 12, V, F);
+  std::vector<int> seam;
+  for (int j = 0; j < 5; ++j) seam.push_back(3 * 12 + j);  // along the tube, an open path
+  std::string error;
+  Eigen::BoundaryFirstFlattening<> bff;
+  CHECK_FALSE(bff.compute(V, F, seam, &error));
+  CHECK(error.find("genus 1") != std::string::npos);
+  CHECK(bff.info() == Eigen::InvalidInput);
+  CHECK(bff.uv().rows() == 0);
+  Eigen::TutteEmbedding<> tutte;
+  CHECK_FALSE(tutte.compute(V, F, seam, &error));
+  CHECK(error.find("genus 1") != std::string::npos);
+  CHECK(tutte.info() == Eigen::InvalidInput);
+  CHECK(tutte.system().topology().genus == 1);
+  CHECK(tutte.system().topology().boundaryLoops == 1);
+
+  // Two pieces: the Dirichlet problem of a piece without boundary has no unique solution.
+  Eigen::MatrixXd G;
+  Eigen::MatrixXi H;
+  Eigen::gridMesh(5, 5, G, H);
+  Eigen::MatrixXd V2(2 * G.rows(), 3);
+  V2 << G, G.rowwise() + Eigen::RowVector3d(2, 0, 0);
+  Eigen::MatrixXi F2(2 * H.rows(), 3);
+  F2 << H, (H.array() + int(G.rows())).matrix();
+  CHECK_FALSE(tutte.compute(V2, F2, {}, &error));
+  CHECK(error.find("one piece") != std::string::npos);
+  CHECK_FALSE(bff.compute(V2, F2, {}, &error));
+  CHECK(error.find("one piece") != std::string::npos);
+
+  // The same objects go on with a disk.
+  REQUIRE_MESSAGE(tutte.compute(G, H, {}, &error), error);
+  CHECK(flippedTriangles(tutte.uv(), tutte.cutFaces()) == 0);
+  REQUIRE_MESSAGE(bff.compute(G, H, {}, &error), error);
+  CHECK(flippedTriangles(bff.uv(), bff.cutFaces()) == 0);
+}
+
 TEST_CASE("Bad seams are refused and change nothing")
 {
   Eigen::MatrixXd V;

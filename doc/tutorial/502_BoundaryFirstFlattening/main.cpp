@@ -19,7 +19,7 @@ int main(int argc, char** argv)
   const std::string outputDir = argc > 1 ? argv[1] : ".";
   const std::string meshPath = argc > 2 ? argv[2] : UC_TUTORIAL_DATA_DIR "/camelhead.off.gz";
 
-  // 1. A disk-like mesh.
+  // 1. A disk-like mesh. Any other (closed, with holes or handles) is first cut to a disk.
   MatrixXd V;
   MatrixXi F;
   std::string error;
@@ -27,6 +27,19 @@ int main(int argc, char** argv)
   {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
+  }
+  if (!meshTopology(F).isDisk())
+  {
+    MatrixXd Vdisk;
+    MatrixXi Fdisk;
+    VectorXi origin;
+    if (!cutMeshToDisk(V, F, Vdisk, Fdisk, origin, &error))
+    {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return 1;
+    }
+    V.swap(Vdisk);
+    F.swap(Fdisk);
   }
 
   // 2. BFF: factor the cotan Laplacian once, remove the boundary, then

@@ -35,6 +35,10 @@ namespace Eigen {
   * Steps 1 and 5 are Dirichlet solves with the factor of the whole Laplacian from which the
   * boundary (and every seam) was removed in place (SeamCutSystem).
   *
+  * The cut mesh must be a topological disk (MeshTopology::isDisk(): one piece, genus 0, one
+  * boundary loop); otherwise compute()/addSeam() fail with a message naming its genus, pieces or
+  * holes. cutToDisk() gives the cuts that make any orientable mesh one.
+  *
   * \tparam Ordering_  fill-reducing ordering of the factor (AMDOrdering<int>, MetisOrdering<int>, ...).
   * \sa TutteEmbedding, SeamCutSystem
   */
@@ -68,12 +72,7 @@ protected:
   bool layout(std::string& problem)
   {
     const auto& system = this->m_system;
-    if (system.loopCount() != 1)
-    {
-      problem = "BoundaryFirstFlattening needs a disk (one boundary loop); the cut mesh has " +
-                std::to_string(system.loopCount()) + " (join the holes by seams)";
-      return false;
-    }
+    if (!this->cutMeshIsDiskLike("BoundaryFirstFlattening", false, problem)) return false;
     const MatrixXi& F = system.cutFaces();
     const MatrixXd& V = system.cutVertices();
     const std::vector<int>& loop = system.boundaryLoop();

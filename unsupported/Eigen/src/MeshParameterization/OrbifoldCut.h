@@ -104,7 +104,7 @@ struct OrbifoldCutResult
 /** \internal Checks that F is a closed, consistently oriented, connected surface of genus 0 (every
   * directed edge once, with its reverse; Euler characteristic 2 over the used vertices).
   * \returns false with \a error set otherwise. */
-inline bool checkSphereTopology(const MatrixXi& F, Index n, std::string& error)
+inline bool checkSphereTopology(const MatrixXi& F, std::string& error)
 {
   std::unordered_map<std::uint64_t, int> directed;
   directed.reserve(std::size_t(3 * F.rows()));
@@ -124,29 +124,8 @@ inline bool checkSphereTopology(const MatrixXi& F, Index n, std::string& error)
               std::to_string(int(e.first & 0xffffffffu)) + " is on the boundary (a sphere-type mesh is needed)";
       return false;
     }
-  // connected components and used vertices (union-find over the faces)
-  std::vector<int> root(std::size_t(n), -1);
-  auto find = [&](int v) {
-    while (root[std::size_t(v)] != v) v = root[std::size_t(v)] = root[std::size_t(root[std::size_t(v)])];
-    return v;
-  };
-  for (Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c)
-      if (root[std::size_t(F(f, c))] < 0) root[std::size_t(F(f, c))] = F(f, c);
-  Index used = 0, components = 0;
-  for (Index f = 0; f < F.rows(); ++f)
-    for (int c = 1; c < 3; ++c)
-    {
-      const int a = find(F(f, 0)), b = find(F(f, c));
-      if (a != b) root[std::size_t(std::max(a, b))] = std::min(a, b);
-    }
-  for (Index v = 0; v < n; ++v)
-    if (root[std::size_t(v)] >= 0)
-    {
-      ++used;
-      components += find(int(v)) == int(v);
-    }
-  const Index euler = used - Index(directed.size() / 2) + F.rows();
+  const MeshTopology topology = meshTopology(F);  // (closed and manifold here: no boundary loops)
+  const Index components = topology.components, euler = topology.eulerCharacteristic;
   if (components != 1 || euler != 2)
   {
     error = "the mesh is not a sphere: " + std::to_string(components) + " component(s), Euler characteristic " +

@@ -113,7 +113,7 @@ public:
       return fail("the mesh must be #V x 3 positions and #F x 3 vertex indices (0-based)");
     if (!checkCones(cones, type, Index(V.rows()))) return false;
     std::string why;
-    if (!internal::mesh_parameterization::checkSphereTopology(F, V.rows(), why)) return fail(why);
+    if (!internal::mesh_parameterization::checkSphereTopology(F, why)) return fail(why);
     m_V = V;
     m_F = F;
     m_cones = cones;

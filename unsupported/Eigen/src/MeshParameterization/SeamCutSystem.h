@@ -89,7 +89,7 @@ public:
   {
     if (!m_isValid) return fail("compute() first", error, false);
     if (path.size() < 2) return fail("a seam needs at least two vertices", error, false);
-    Snapshot previous{m_cutVertices, m_cutFaces, m_origin, m_boundaryLoop, {}};
+    Snapshot previous{m_cutVertices, m_cutFaces, m_origin, m_boundaryLoop, {}, m_topology};
     const auto start = std::chrono::steady_clock::now();
     MatrixXd cutV;
     MatrixXi cutF;
@@ -243,7 +243,10 @@ public:
   /** \returns the boundary loop of the cut mesh (empty for a closed mesh without seams). */
   const std::vector<int>& boundaryLoop() const { return m_boundaryLoop; }
   /** \returns the number of boundary loops of the cut mesh (the longest is boundaryLoop()). */
-  Index loopCount() const { return m_loopCount; }
+  Index loopCount() const { return m_topology.boundaryLoops; }
+  /** \returns the topology of the cut mesh (pieces, boundary loops, genus): the disk-based
+    * layouts need MeshTopology::isDisk(). */
+  const MeshTopology& topology() const { return m_topology; }
   /** \returns true when cut vertex \a i lies on the boundary loop (a Dirichlet dof). */
   bool isOnBoundaryLoop(Index i) const { return m_onLoop[std::size_t(i)] != 0; }
   /** \returns the per-corner edge weights (#F x 3). */
@@ -265,6 +268,7 @@ private:
     VectorXi origin;
     std::vector<int> loop;
     std::vector<int> newlyRemoved;
+    MeshTopology topology;
   };
 
   static double msSince(std::chrono::steady_clock::time_point start)
@@ -285,7 +289,7 @@ private:
   {
     const Index n = m_vertices.rows(), nc = m_cutVertices.rows();
     std::vector<std::vector<int>> loops = boundaryLoops(m_cutFaces);
-    m_loopCount = Index(loops.size());
+    m_topology = internal::meshtools::topologyWithLoops(m_cutFaces, Index(loops.size()));
     m_boundaryLoop.clear();
     if (!loops.empty())
     {
@@ -346,7 +350,7 @@ private:
     m_boundaryLoop = snapshot.loop;
     m_onLoop.assign(std::size_t(m_cutVertices.rows()), 0);
     for (int v : m_boundaryLoop) m_onLoop[std::size_t(v)] = 1;
-    m_loopCount = Index(boundaryLoops(m_cutFaces).size());
+    m_topology = snapshot.topology;
   }
 
   MatrixXd m_vertices, m_cutVertices, m_cornerWeights;
@@ -357,7 +361,7 @@ private:
   double m_shift = 0;
   std::vector<int> m_boundaryLoop;
   std::vector<char> m_onLoop, m_removed;
-  Index m_loopCount = 0;
+  MeshTopology m_topology;
   std::vector<Snapshot> m_history;
   double m_lastUpdateMs = 0, m_lastCutMs = 0;
   bool m_isValid = false;

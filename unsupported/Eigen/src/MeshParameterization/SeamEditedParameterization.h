@@ -100,6 +100,31 @@ protected:
     return false;
   }
 
+  /** Checks that the cut mesh can be laid out in the plane by \a who: one piece of genus 0
+    * with one boundary loop, or with several when \a holesAllowed (the others stay free).
+    * Otherwise \a problem says what the cut mesh is and which cuts would make it a disk. */
+  bool cutMeshIsDiskLike(const char* who, bool holesAllowed, std::string& problem) const
+  {
+    const MeshTopology& t = m_system.topology();
+    const std::string chi = "Euler characteristic " + std::to_string(t.eulerCharacteristic) + ", " +
+                            std::to_string(t.boundaryLoops) + " boundary loop(s)";
+    if (t.components != 1)
+      problem = std::string(who) + " needs a mesh in one piece; the cut mesh has " + std::to_string(t.components) +
+                " (lay out each piece on its own)";
+    else if (t.genus < 0)
+      problem = std::string(who) + " needs a disk; the cut mesh is not an orientable manifold surface (" + chi + ")";
+    else if (t.genus > 0)
+      problem = std::string(who) + " needs a disk; the cut mesh has genus " + std::to_string(t.genus) + " (" + chi +
+                "): cut it along " + std::to_string(2 * t.genus) +
+                " more seams, loops around and through its handles that start and end on the boundary";
+    else if (!holesAllowed && t.boundaryLoops != 1)
+      problem = std::string(who) + " needs a disk (one boundary loop); the cut mesh has " +
+                std::to_string(t.boundaryLoops) + " (join the holes by seams)";
+    else
+      return true;
+    return false;
+  }
+
   bool relayout(std::string* error)
   {
     std::string problem;

@@ -27,7 +27,9 @@ enum class BoundarySpacing
   * \f$ ((A + \varepsilon I)\,uv)_i = 0 \f$ with A the uniform (Tutte) or cotangent (harmonic)
   * Laplacian of the cut mesh. With uniform weights the map of a disk is a bijection onto the
   * (convex) polygon of the boundary (Tutte's theorem); cotangent weights can flip triangles where
-  * they are negative. Other boundary loops (holes) stay free.
+  * they are negative. Other boundary loops (holes) stay free. The cut mesh must be one piece of
+  * genus 0 (MeshTopology); a mesh with handles fails with a message naming its genus (cut it with
+  * cutToDisk() first).
   *
   * \code
   * Eigen::TutteEmbedding<> tutte;
@@ -95,8 +97,9 @@ protected:
     return internal::meshparameterization::cornerEdgeWeights(V, F, m_weights);
   }
 
-  bool layout(std::string&)
+  bool layout(std::string& problem)
   {
+    if (!this->cutMeshIsDiskLike("TutteEmbedding", true, problem)) return false;
     const MatrixXd g = circleBoundary();
     this->m_uv = this->m_system.solve(MatrixXd::Zero(g.rows(), 2), g);
     return true;

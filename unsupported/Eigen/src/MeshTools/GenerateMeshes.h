@@ -1,5 +1,6 @@
 // GenerateMeshes: synthetic triangle meshes of any size for tests and benchmarks: a planar grid
-// (a disk with one boundary loop) and a subdivided icosahedron on the unit sphere (closed, genus 0).
+// (a disk with one boundary loop), a subdivided icosahedron on the unit sphere (closed, genus 0)
+// and a torus (closed, genus 1).
 
 #ifndef EIGEN_MESHTOOLS_GENERATEMESHES_H
 #define EIGEN_MESHTOOLS_GENERATEMESHES_H
@@ -119,6 +120,45 @@ inline void icosphereMesh(int subdivisions, MatrixXd& V, MatrixXi& F)
   for (std::size_t i = 0; i < points.size(); ++i) V.row(Index(i)) = points[i].transpose();
   F.resize(Index(faces.size()), 3);
   for (std::size_t f = 0; f < faces.size(); ++f) F.row(Index(f)) << faces[f][0], faces[f][1], faces[f][2];
+}
+
+/** \ingroup MeshTools_Module
+  * \brief Torus: a closed mesh of genus 1 around the z axis, \a rings x \a segments vertices.
+  *
+  * Vertex (i, j), 0 <= i < rings (around the z axis), 0 <= j < segments (around the tube), has
+  * index i*segments + j and position ((R + r cos v) cos u, (R + r cos v) sin u, r sin v) with
+  * u = 2 pi i / rings, v = 2 pi j / segments. Each cell is split into two triangles facing
+  * outwards, so F has 2*rings*segments rows, and every edge lies on two of them. A mesh with a
+  * handle: a disk-based parameterization needs it cut along a loop around the tube and one
+  * around the axis. Needs rings, segments >= 3 (otherwise V and F are empty).
+  *
+  * \param rings     vertices around the z axis.
+  * \param segments  vertices around the tube.
+  * \param V         output: (rings*segments) x 3 vertex positions.
+  * \param F         output: (2*rings*segments) x 3 triangles, 0-based.
+  * \param R         distance from the axis to the centre of the tube.
+  * \param r         radius of the tube.
+  */
+inline void torusMesh(int rings, int segments, MatrixXd& V, MatrixXi& F, double R = 2.0, double r = 1.0)
+{
+  if (rings < 3 || segments < 3)
+  {
+    V.resize(0, 3);
+    F.resize(0, 3);
+    return;
+  }
+  V.resize(Index(rings) * segments, 3);
+  F.resize(2 * Index(rings) * segments, 3);
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j)
+    {
+      const double u = 2 * EIGEN_PI * i / rings, v = 2 * EIGEN_PI * j / segments;
+      const int a = i * segments + j, b = ((i + 1) % rings) * segments + j,
+                c = ((i + 1) % rings) * segments + (j + 1) % segments, d = i * segments + (j + 1) % segments;
+      V.row(a) << (R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v);
+      F.row(2 * Index(a)) << a, b, c;
+      F.row(2 * Index(a) + 1) << a, c, d;
+    }
 }
 
 } // namespace Eigen
