@@ -288,8 +288,9 @@ private:
   bool adoptCut(std::vector<int>& newlyRemoved, std::string& problem)
   {
     const Index n = m_vertices.rows(), nc = m_cutVertices.rows();
-    std::vector<std::vector<int>> loops = boundaryLoops(m_cutFaces);
-    m_topology = internal::meshtools::topologyWithLoops(m_cutFaces, Index(loops.size()));
+    const std::vector<int> partner = internal::meshtools::sidePartners(m_cutFaces);  // (one sort for both)
+    std::vector<std::vector<int>> loops = internal::meshtools::boundaryLoopsFromPartners(m_cutFaces, partner);
+    m_topology = internal::meshtools::topologyFromPartners(m_cutFaces, partner, Index(loops.size()));
     m_boundaryLoop.clear();
     if (!loops.empty())
     {

@@ -34,35 +34,13 @@ inline int nextBoundarySideAround(const MatrixXi& F, const std::vector<int>& par
 } // namespace meshtools
 } // namespace internal
 
-/** \ingroup MeshTools_Module
-  * \brief The boundary loops of a triangle mesh.
-  *
-  * A boundary edge is an edge used by exactly one triangle. Each loop is the ordered list of the
-  * vertices along a closed chain of boundary edges, in the direction of the triangle's side (so
-  * for counter-clockwise faces the mesh lies to the left of the loop, and a planar disk's outer
-  * loop runs counter-clockwise). Each vertex of a loop appears once in it; the edge from the last
-  * vertex back to the first closes it. Where several fans of triangles touch at one vertex, each
-  * loop stays inside its own fan, so such a vertex is listed once in each loop through it.
-  *
-  * Loops are sorted by decreasing length (ties: the loop whose first boundary side comes first
-  * in F comes first); each starts at the start vertex of its first boundary side in face order.
-  * A closed mesh has no loops. On non-manifold or inconsistently oriented meshes the chains are
-  * traced as far as they go and returned as they are.
-  *
-  * \param F  #F x 3 triangles, 0-based vertex indices.
-  * \returns the loops; empty if there is no boundary or F is not a valid #F x 3 index matrix
-  *          (negative indices, other than 3 columns). Cost O(#F log #F).
-  *
-  * \sa cutMesh(), shortestEdgePath()
-  */
-inline std::vector<std::vector<int>> boundaryLoops(const MatrixXi& F)
+namespace internal {
+namespace meshtools {
+
+/** \internal boundaryLoops() of a valid \a F whose side partners (sidePartners()) are known. */
+inline std::vector<std::vector<int>> boundaryLoopsFromPartners(const MatrixXi& F, const std::vector<int>& partner)
 {
   std::vector<std::vector<int>> loops;
-  if (F.rows() == 0 || F.cols() != 3 || F.minCoeff() < 0 || 3 * F.rows() > Index(std::numeric_limits<int>::max()))
-    return loops;
-
-  using internal::meshtools::nextBoundarySideAround;
-  const std::vector<int> partner = internal::meshtools::sidePartners(F);
 
   // The boundary sides (as face*3+corner) in face order, and as (start vertex, side) pairs sorted
   // by vertex: the sides leaving a vertex are one range (no array over the index range of F).
@@ -108,6 +86,37 @@ inline std::vector<std::vector<int>> boundaryLoops(const MatrixXi& F)
   std::stable_sort(loops.begin(), loops.end(),
                    [](const std::vector<int>& x, const std::vector<int>& y) { return x.size() > y.size(); });
   return loops;
+}
+
+} // namespace meshtools
+} // namespace internal
+
+/** \ingroup MeshTools_Module
+  * \brief The boundary loops of a triangle mesh.
+  *
+  * A boundary edge is an edge used by exactly one triangle. Each loop is the ordered list of the
+  * vertices along a closed chain of boundary edges, in the direction of the triangle's side (so
+  * for counter-clockwise faces the mesh lies to the left of the loop, and a planar disk's outer
+  * loop runs counter-clockwise). Each vertex of a loop appears once in it; the edge from the last
+  * vertex back to the first closes it. Where several fans of triangles touch at one vertex, each
+  * loop stays inside its own fan, so such a vertex is listed once in each loop through it.
+  *
+  * Loops are sorted by decreasing length (ties: the loop whose first boundary side comes first
+  * in F comes first); each starts at the start vertex of its first boundary side in face order.
+  * A closed mesh has no loops. On non-manifold or inconsistently oriented meshes the chains are
+  * traced as far as they go and returned as they are.
+  *
+  * \param F  #F x 3 triangles, 0-based vertex indices.
+  * \returns the loops; empty if there is no boundary or F is not a valid #F x 3 index matrix
+  *          (negative indices, other than 3 columns). Cost O(#F log #F).
+  *
+  * \sa cutMesh(), shortestEdgePath()
+  */
+inline std::vector<std::vector<int>> boundaryLoops(const MatrixXi& F)
+{
+  if (F.rows() == 0 || F.cols() != 3 || F.minCoeff() < 0 || 3 * F.rows() > Index(std::numeric_limits<int>::max()))
+    return std::vector<std::vector<int>>();
+  return internal::meshtools::boundaryLoopsFromPartners(F, internal::meshtools::sidePartners(F));
 }
 
 } // namespace Eigen

@@ -31,11 +31,11 @@ struct MeshTopology
 namespace internal {
 namespace meshtools {
 
-/** \internal meshTopology() with the number of boundary loops of \a F already known. */
-inline MeshTopology topologyWithLoops(const MatrixXi& F, Index loopCount)
+/** \internal meshTopology() of a valid \a F whose side partners (sidePartners()) and number of
+  * boundary loops are known: no sort beyond the one that found the partners. */
+inline MeshTopology topologyFromPartners(const MatrixXi& F, const std::vector<int>& partner, Index loopCount)
 {
   MeshTopology t;
-  if (F.rows() == 0 || F.cols() != 3 || F.minCoeff() < 0) return t;
   const Index n = Index(F.maxCoeff()) + 1;
   // connected pieces: union-find over the vertices of each face
   std::vector<int> parent(std::size_t(n), -1); // -1: unused; else a link towards the piece's root
@@ -65,8 +65,18 @@ inline MeshTopology topologyWithLoops(const MatrixXi& F, Index loopCount)
       ++t.vertices;
       t.components += find(int(v)) == int(v);
     }
-  const std::vector<HalfEdgeRecord> sides = sortedHalfEdges(F);
-  for (std::size_t k = 0; k < sides.size(); ++k) t.edges += k == 0 || sides[k].key != sides[k - 1].key;
+  // edges: one per boundary side, one per pair of partner sides, one per key of the sides that
+  // share a non-manifold edge (rare: sorted apart)
+  std::vector<std::uint64_t> crowded;
+  for (std::size_t side = 0; side < partner.size(); ++side)
+  {
+    const int other = partner[side];
+    if (other == -1 || (other >= 0 && std::size_t(other) > side)) ++t.edges;
+    if (other == -2)
+      crowded.push_back(undirectedEdgeKey(F(Index(side / 3), Index(side % 3)), F(Index(side / 3), Index((side % 3 + 1) % 3))));
+  }
+  std::sort(crowded.begin(), crowded.end());
+  t.edges += Index(std::unique(crowded.begin(), crowded.end()) - crowded.begin());
   t.faces = F.rows();
   t.boundaryLoops = loopCount;
   t.eulerCharacteristic = t.vertices - t.edges + t.faces;
@@ -93,7 +103,11 @@ inline MeshTopology topologyWithLoops(const MatrixXi& F, Index loopCount)
   */
 inline MeshTopology meshTopology(const MatrixXi& F)
 {
-  return internal::meshtools::topologyWithLoops(F, Index(boundaryLoops(F).size()));
+  if (F.rows() == 0 || F.cols() != 3 || F.minCoeff() < 0 || 3 * F.rows() > Index(std::numeric_limits<int>::max()))
+    return MeshTopology();
+  const std::vector<int> partner = internal::meshtools::sidePartners(F);
+  const Index loops = Index(internal::meshtools::boundaryLoopsFromPartners(F, partner).size());
+  return internal::meshtools::topologyFromPartners(F, partner, loops);
 }
 
 } // namespace Eigen
