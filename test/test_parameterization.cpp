@@ -12,6 +12,9 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <random>
+
 namespace {
 
 const double kShift = 1e-8;
@@ -217,6 +220,94 @@ TEST_CASE("Tutte seams: every addSeam and undo equals a fresh solve on the cut m
         CHECK(freshDirichletDifference(tutte.cutVertices(), tutte.cutFaces(), tutte.uv(), weights) < 1e-9);
       }
     }
+  }
+}
+
+TEST_CASE("Seams cut in place give the cut mesh and loop of the general cut, through cuts and undos")
+{
+  // The shadow: the same seams cut by cutMeshAlongPath on a copy, the loop traced by
+  // boundaryLoops; after every addSeam and undo the system's cut mesh must be identical.
+  const auto disks = testDisks();
+  for (std::size_t mesh = 0; mesh < disks.size(); ++mesh)
+  {
+    CAPTURE(mesh);
+    const Eigen::MatrixXd& MV = disks[mesh].first;
+    const Eigen::MatrixXi& MF = disks[mesh].second;
+    Eigen::TutteEmbedding<> tutte;
+    REQUIRE(tutte.compute(MV, MF));
+    struct Shadow
+    {
+      Eigen::MatrixXd V;
+      Eigen::MatrixXi F;
+      Eigen::VectorXi origin;
+    };
+    std::vector<Shadow> shadows{{MV, MF, Eigen::VectorXi::LinSpaced(MV.rows(), 0, int(MV.rows() - 1))}};
+    auto same = [&]() {
+      const Shadow& s = shadows.back();
+      const auto& system = tutte.system();
+      REQUIRE(system.cutVertices().rows() == s.V.rows());
+      CHECK(system.cutVertices() == s.V);
+      CHECK(system.cutFaces() == s.F);
+      CHECK(system.origin() == s.origin);
+      std::vector<int> loop = Eigen::boundaryLoops(s.F).front();
+      std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+      CHECK(system.boundaryLoop() == loop);
+      CHECK(system.topology().genus == 0);
+      CHECK(freshDirichletDifference(tutte.cutVertices(), tutte.cutFaces(), tutte.uv(), Eigen::LaplacianWeights::Uniform) <
+            1e-9);
+    };
+    auto cutShadow = [&shadows](const std::vector<int>& seam) {
+      Shadow next;
+      Eigen::VectorXi local;
+      REQUIRE(Eigen::cutMeshAlongPath(shadows.back().V, shadows.back().F, seam, next.V, next.F, local));
+      next.origin.resize(local.size());
+      for (Eigen::Index i = 0; i < local.size(); ++i) next.origin[i] = shadows.back().origin[local[i]];
+      shadows.push_back(next);
+    };
+    std::mt19937 random(17 + unsigned(mesh));
+    int inPlace = 0;
+    for (int step = 0; step < 14; ++step)
+    {
+      if (step % 4 == 3 && shadows.size() > 1)
+      {
+        REQUIRE(tutte.undo());
+        shadows.pop_back();
+        same();
+        continue;
+      }
+      const auto& system = tutte.system();
+      const Eigen::Index nc = system.cutVertices().rows();
+      int target = -1;
+      for (int tries = 0; tries < 100 && target < 0; ++tries)
+      {
+        const int v = int(random() % std::uint32_t(nc));
+        if (!system.isOnBoundaryLoop(v) && Eigen::meshTopology(system.cutFaces()).boundaryLoops == 1) target = v;
+      }
+      REQUIRE(target >= 0);
+      const std::vector<int> seam = Eigen::seamToBoundary(system.cutVertices(), system.cutFaces(), target);
+      REQUIRE(seam.size() >= 2);
+      cutShadow(seam);
+      std::string error;
+      REQUIRE_MESSAGE(tutte.addSeam(seam, &error), error);
+      inPlace += tutte.system().lastCutInPlace();
+      same();
+    }
+    CHECK(inPlace >= 8);  // (every seam from the loop inwards here)
+    // A seam the in-place cut does not take (it starts inside and ends on the loop) goes the general way.
+    const auto& system = tutte.system();
+    int target = -1;
+    for (Eigen::Index v = 0; v < system.cutVertices().rows() && target < 0; ++v)
+      if (!system.isOnBoundaryLoop(v)) target = int(v);
+    std::vector<int> reversed = Eigen::seamToBoundary(system.cutVertices(), system.cutFaces(), target);
+    std::reverse(reversed.begin(), reversed.end());
+    cutShadow(reversed);
+    std::string error;
+    REQUIRE_MESSAGE(tutte.addSeam(reversed, &error), error);
+    CHECK_FALSE(tutte.system().lastCutInPlace());
+    same();
+    REQUIRE(tutte.undo());
+    shadows.pop_back();
+    same();
   }
 }
 

@@ -71,6 +71,13 @@ public:
     m_cutVertices = V;
     m_cutFaces = F;
     m_origin = VectorXi::LinSpaced(V.rows(), 0, int(V.rows() - 1));
+    {  // a cut in place splits only the seam's vertices; a general cut also every vertex where
+       // several fans meet: in place only when there is none (a cut with no edges splits nothing)
+      MatrixXd splitV;
+      MatrixXi splitF;
+      VectorXi splitOrigin;
+      m_cutsInPlace = cutMesh(V, F, {}, splitV, splitF, splitOrigin) && splitV.rows() == V.rows();
+    }
     m_removed.assign(std::size_t(V.rows()), 0);
     std::vector<int> newlyRemoved;
     if (!adoptCut(newlyRemoved, problem)) return fail(problem, error);
@@ -89,12 +96,37 @@ public:
   {
     if (!m_isValid) return fail("compute() first", error, false);
     if (path.size() < 2) return fail("a seam needs at least two vertices", error, false);
-    Snapshot previous{m_cutVertices, m_cutFaces, m_origin, m_boundaryLoop, {}, m_topology};
     const auto start = std::chrono::steady_clock::now();
+    std::string problem;
+    if (m_cutsInPlace)
+    {  // a seam from the loop inwards: cut in place, the loop spliced (else the general cut below)
+      Snapshot local;
+      local.vertexCount = m_cutVertices.rows();
+      local.loop = m_boundaryLoop;
+      local.topology = m_topology;
+      if (internal::meshtools::seamCutInPlace(m_cutVertices, m_cutFaces, m_origin, m_boundaryLoop, m_onBoundary, path,
+                                              local.edits, m_cutMark))
+      {
+        local.newBoundary.assign(path.begin() + 1, path.end());
+        m_lastCutInPlace = true;
+        std::rotate(m_boundaryLoop.begin(), std::min_element(m_boundaryLoop.begin(), m_boundaryLoop.end()),
+                    m_boundaryLoop.end());
+        m_onLoop.resize(std::size_t(m_cutVertices.rows()), 0);
+        for (int v : m_boundaryLoop) m_onLoop[std::size_t(v)] = 1;
+        return commitCut(local, newlyRemovedOfLoop(), true, start, error);
+      }
+    }
+    Snapshot previous;
+    previous.vertices = m_cutVertices;
+    previous.faces = m_cutFaces;
+    previous.origin = m_origin;
+    previous.loop = m_boundaryLoop;
+    previous.topology = m_topology;
+    previous.onBoundary = m_onBoundary;
+    m_lastCutInPlace = false;
     MatrixXd cutV;
     MatrixXi cutF;
     VectorXi localOrigin;
-    std::string problem;
     if (!cutMeshAlongPath(m_cutVertices, m_cutFaces, path, cutV, cutF, localOrigin, &problem))
       return fail(problem, error, false);
     m_cutVertices.swap(cutV);
@@ -103,18 +135,8 @@ public:
     for (Index i = 0; i < localOrigin.size(); ++i) composed[i] = previous.origin[localOrigin[i]];
     m_origin.swap(composed);
     std::vector<int> newlyRemoved;
-    bool ok = adoptCut(newlyRemoved, problem);
-    m_lastCutMs = msSince(start);
-    if (ok) ok = removeFromFactor(newlyRemoved, problem);
-    if (!ok)
-    {
-      restore(previous);
-      return fail(problem, error, false);
-    }
-    previous.newlyRemoved = newlyRemoved;
-    m_history.push_back(std::move(previous));
-    if (error) error->clear();
-    return true;
+    const bool ok = adoptCut(newlyRemoved, problem);
+    return commitCut(previous, newlyRemoved, ok, start, error, problem);
   }
 
   /** Undoes the last addSeam(): the cut mesh comes back and the seam's dofs are restored in the
@@ -259,6 +281,11 @@ public:
   double lastUpdateMs() const { return m_lastUpdateMs; }
   /** \returns the milliseconds the last addSeam() spent cutting the mesh and tracing its boundary. */
   double lastCutMs() const { return m_lastCutMs; }
+  /** \returns whether the last addSeam() cut in place (a seam from the boundary loop into the
+    * interior of a mesh whose vertices each join one fan: the seam's neighbourhood is rewritten
+    * and the loop spliced, with the same result as cutMeshAlongPath()) rather than rebuilding
+    * the cut mesh. */
+  bool lastCutInPlace() const { return m_lastCutInPlace; }
 
 private:
   struct Snapshot
@@ -269,6 +296,12 @@ private:
     std::vector<int> loop;
     std::vector<int> newlyRemoved;
     MeshTopology topology;
+    std::vector<char> onBoundary;  ///< (a general cut) the boundary flags before it
+    /** A cut in place: the number of vertices before it (else -1), its rewritten corners and the
+      * path vertices it put on the boundary; vertices, faces and origin above are then empty. */
+    Index vertexCount = -1;
+    std::vector<internal::meshtools::CornerEdit> edits;
+    std::vector<int> newBoundary;
   };
 
   static double msSince(std::chrono::steady_clock::time_point start)
@@ -300,6 +333,9 @@ private:
     }
     m_onLoop.assign(std::size_t(nc), 0);
     for (int v : m_boundaryLoop) m_onLoop[std::size_t(v)] = 1;
+    m_onBoundary.assign(std::size_t(nc), 0);
+    for (const auto& other : loops)
+      for (int v : other) m_onBoundary[std::size_t(v)] = 1;
     // Every copy, and every vertex that has one, must be known (on the loop): only then is the
     // interior of the cut mesh a subset of the original vertices.
     std::vector<char> hasCopy(std::size_t(n), 0);
@@ -312,16 +348,44 @@ private:
                   "reach it again";
         return false;
       }
-    std::vector<char> listed(std::size_t(n), 0);
+    newlyRemoved = newlyRemovedOfLoop();
+    return true;
+  }
+
+  /** The original vertices of the boundary loop that are not removed from the factor yet, once
+    * each, in the loop's order. */
+  std::vector<int> newlyRemovedOfLoop()
+  {
+    std::vector<int> list;
+    m_listed.resize(std::size_t(m_vertices.rows()), 0);  // (all zero between calls)
     for (int v : m_boundaryLoop)
     {
       const int o = m_origin[v];
-      if (!m_removed[std::size_t(o)] && !listed[std::size_t(o)])
+      if (!m_removed[std::size_t(o)] && !m_listed[std::size_t(o)])
       {
-        listed[std::size_t(o)] = 1;
-        newlyRemoved.push_back(o);
+        m_listed[std::size_t(o)] = 1;
+        list.push_back(o);
       }
     }
+    for (int o : list) m_listed[std::size_t(o)] = 0;
+    return list;
+  }
+
+  /** Ends an addSeam() whose cut mesh is in place (\a cutOk, else \a problem says why): the
+    * loop's new vertices leave the factor, and \a previous goes on the undo history; on failure
+    * the cut mesh of \a previous comes back. */
+  bool commitCut(Snapshot& previous, const std::vector<int>& newlyRemoved, bool cutOk,
+                 std::chrono::steady_clock::time_point start, std::string* error, std::string problem = std::string())
+  {
+    m_lastCutMs = msSince(start);
+    if (!cutOk || !removeFromFactor(newlyRemoved, problem))
+    {
+      restore(previous);
+      return fail(problem, error, false);
+    }
+    previous.newlyRemoved = newlyRemoved;
+    m_history.push_back(std::move(previous));
+    if (error) error->clear();
     return true;
   }
 
@@ -345,15 +409,27 @@ private:
   /** Puts the cut mesh of \a snapshot back (the factor is not touched). */
   void restore(const Snapshot& snapshot)
   {
-    m_cutVertices = snapshot.vertices;
-    m_cutFaces = snapshot.faces;
-    m_origin = snapshot.origin;
+    if (snapshot.vertexCount >= 0)
+    {  // a cut in place: its corners back, its copies dropped
+      for (std::size_t e = snapshot.edits.size(); e-- > 0;)
+        m_cutFaces(snapshot.edits[e].face, snapshot.edits[e].corner) = snapshot.edits[e].vertex;
+      m_cutVertices.conservativeResize(snapshot.vertexCount, m_cutVertices.cols());
+      m_origin.conservativeResize(snapshot.vertexCount);
+      for (int v : snapshot.newBoundary) m_onBoundary[std::size_t(v)] = 0;
+      m_onBoundary.resize(std::size_t(snapshot.vertexCount));
+    }
+    else
+    {
+      m_cutVertices = snapshot.vertices;
+      m_cutFaces = snapshot.faces;
+      m_origin = snapshot.origin;
+      m_onBoundary = snapshot.onBoundary;
+    }
     m_boundaryLoop = snapshot.loop;
     m_onLoop.assign(std::size_t(m_cutVertices.rows()), 0);
     for (int v : m_boundaryLoop) m_onLoop[std::size_t(v)] = 1;
     m_topology = snapshot.topology;
   }
-
   MatrixXd m_vertices, m_cutVertices, m_cornerWeights;
   MatrixXi m_faces, m_cutFaces;
   VectorXi m_origin;
@@ -362,9 +438,14 @@ private:
   double m_shift = 0;
   std::vector<int> m_boundaryLoop;
   std::vector<char> m_onLoop, m_removed;
+  std::vector<char> m_onBoundary;  ///< by cut vertex: on any boundary loop
+  std::vector<int> m_cutMark;      ///< scratch of the cuts in place (all -1 between them)
+  std::vector<char> m_listed;      ///< scratch of newlyRemovedOfLoop() (all zero between calls)
+  bool m_cutsInPlace = false;      ///< no vertex of the mesh joins several fans: seams may be cut in place
   MeshTopology m_topology;
   std::vector<Snapshot> m_history;
   double m_lastUpdateMs = 0, m_lastCutMs = 0;
+  bool m_lastCutInPlace = false;
   bool m_isValid = false;
 };
 
