@@ -20,7 +20,8 @@ int main(int argc, char** argv)
   const std::string outputDir = argc > 1 ? argv[1] : ".";
   const std::string meshPath = argc > 2 ? argv[2] : UC_TUTORIAL_DATA_DIR "/camelhead.off.gz";
 
-  // 1. A mesh with one boundary loop (camelhead: open at the neck).
+  // 1. A mesh with one boundary loop (camelhead: open at the neck). A closed mesh, or one with
+  //    handles, is first cut to a disk (holes may stay: Tutte leaves them free).
   MatrixXd V;
   MatrixXi F;
   std::string error;
@@ -28,6 +29,20 @@ int main(int argc, char** argv)
   {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
+  }
+  const MeshTopology topology = meshTopology(F);
+  if (topology.genus != 0 || topology.boundaryLoops == 0)
+  {
+    MatrixXd Vdisk;
+    MatrixXi Fdisk;
+    VectorXi origin;
+    if (!cutMeshToDisk(V, F, Vdisk, Fdisk, origin, &error))
+    {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return 1;
+    }
+    V.swap(Vdisk);
+    F.swap(Fdisk);
   }
 
   // 2. Tutte embedding: uniform weights, boundary spaced by arc length on the unit circle.
