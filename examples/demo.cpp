@@ -5,7 +5,7 @@
 // restoreDofs for the undo) and lays the mesh out again; the demo prints, for every edit, the
 // update time next to the time of a fresh compute() of the same (cut) matrix, and writes a PNG of
 // the layout after every edit. At the end the layout is checked against BFF from scratch. A mesh
-// with holes or handles is first cut to a disk (cutToDisk), a closed sphere along one path.
+// with holes or handles is first cut to a disk (cutMeshToDisk), a closed sphere along one path.
 //
 // Usage: demo [mesh.off[.gz]|.obj|.ply] [output-dir]   (default output dir: demo-out)
 // Exit code: 0 on success, 1 on any failure (with a message).
@@ -116,13 +116,13 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "demo: %s\n", error.c_str());
     return 1;
   }
-  std::printf("mesh      %s: %lld vertices, %lld triangles, %zu boundary loops\n", path.c_str(), (long long)V.rows(),
-              (long long)F.rows(), Eigen::boundaryLoops(F).size());
+  const Eigen::MeshTopology topology = Eigen::meshTopology(F);
+  std::printf("mesh      %s: %lld vertices, %lld triangles, %lld boundary loops\n", path.c_str(), (long long)V.rows(),
+              (long long)F.rows(), (long long)topology.boundaryLoops);
 
   // 2. BFF lays out disks. A closed sphere is first cut open along one path; a mesh with holes or
-  //    handles is cut to a disk along a cut graph (cutToDisk: paths joining the holes, loops
+  //    handles is cut to a disk along a cut graph (cutMeshToDisk: paths joining the holes, loops
   //    around the handles), which then is the mesh the session edits.
-  const Eigen::MeshTopology topology = Eigen::meshTopology(F);
   std::vector<int> initialSeam;
   if (topology.components != 1)
   {
@@ -138,18 +138,15 @@ int main(int argc, char** argv)
   }
   else if (!topology.isDisk())
   {
-    Eigen::MatrixXd Vdisk;
-    Eigen::MatrixXi Fdisk;
+    const Eigen::Index before = V.rows();
     Eigen::VectorXi origin;
-    if (!Eigen::cutMeshToDisk(V, F, Vdisk, Fdisk, origin, &error))
+    if (!Eigen::cutMeshToDisk(V, F, origin, &error))
     {
       std::fprintf(stderr, "demo: %s\n", error.c_str());
       return 1;
     }
     std::printf("genus %lld, %lld boundary loops: cut to a disk first (%lld vertices copied)\n",
-                (long long)topology.genus, (long long)topology.boundaryLoops, (long long)(Vdisk.rows() - V.rows()));
-    V.swap(Vdisk);
-    F.swap(Fdisk);
+                (long long)topology.genus, (long long)topology.boundaryLoops, (long long)(V.rows() - before));
   }
 
   // 3. BFF: factor the cotan Laplacian of the whole mesh once (METIS), remove the boundary,

@@ -726,6 +726,14 @@ TEST_CASE("cutToDisk: spheres, tori, holes and real meshes become disks; bad mes
   CHECK_FALSE(Eigen::cutMeshToDisk(V.topRows(5), F, Vdisk, Fdisk, origin, &error));  // F indexes past V
   CHECK_FALSE(error.empty());
   CHECK(Fdisk.rows() == F.rows());  // untouched on failure
+  // In place: V and F become the same disk.
+  MatrixXd Vplace = V;
+  MatrixXi Fplace = F;
+  VectorXi placeOrigin;
+  REQUIRE_MESSAGE(Eigen::cutMeshToDisk(Vplace, Fplace, placeOrigin, &error), error);
+  CHECK(Vplace == Vdisk);
+  CHECK(Fplace == Fdisk);
+  CHECK(placeOrigin == origin);
 }
 
 TEST_CASE("boundaryLoops and cutMesh on a real mesh (camelhead)") {

@@ -31,18 +31,11 @@ int main(int argc, char** argv)
     return 1;
   }
   const MeshTopology topology = meshTopology(F);
-  if (topology.genus != 0 || topology.boundaryLoops == 0)
+  VectorXi origin;  // (each vertex of the disk -> the vertex of the mesh it copies)
+  if ((topology.genus != 0 || topology.boundaryLoops == 0) && !cutMeshToDisk(V, F, origin, &error))
   {
-    MatrixXd Vdisk;
-    MatrixXi Fdisk;
-    VectorXi origin;
-    if (!cutMeshToDisk(V, F, Vdisk, Fdisk, origin, &error))
-    {
-      std::fprintf(stderr, "%s\n", error.c_str());
-      return 1;
-    }
-    V.swap(Vdisk);
-    F.swap(Fdisk);
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 1;
   }
 
   // 2. Tutte embedding: uniform weights, boundary spaced by arc length on the unit circle.

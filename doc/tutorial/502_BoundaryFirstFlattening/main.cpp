@@ -28,18 +28,11 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
   }
-  if (!meshTopology(F).isDisk())
+  VectorXi origin;  // (each vertex of the disk -> the vertex of the mesh it copies)
+  if (!meshTopology(F).isDisk() && !cutMeshToDisk(V, F, origin, &error))
   {
-    MatrixXd Vdisk;
-    MatrixXi Fdisk;
-    VectorXi origin;
-    if (!cutMeshToDisk(V, F, Vdisk, Fdisk, origin, &error))
-    {
-      std::fprintf(stderr, "%s\n", error.c_str());
-      return 1;
-    }
-    V.swap(Vdisk);
-    F.swap(Fdisk);
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 1;
   }
 
   // 2. BFF: factor the cotan Laplacian once, remove the boundary, then

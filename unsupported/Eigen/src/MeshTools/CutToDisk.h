@@ -140,6 +140,25 @@ inline bool cutMeshToDisk(const MatrixXd& V, const MatrixXi& F, MatrixXd& Vdisk,
   return cutToDisk(F, cuts, error) && cutMesh(V, F, cuts, Vdisk, Fdisk, origin, error);
 }
 
+/** \ingroup MeshTools_Module
+  * \brief cutMeshToDisk() in place: \a V and \a F become the disk's vertices and triangles, and
+  * \a origin maps each of its vertices to the vertex it copies. A disk stays as it is.
+  * \returns false (\a V, \a F untouched, \a error says why) when the mesh is refused.
+  *
+  * \code
+  * if (!Eigen::meshTopology(F).isDisk() && !Eigen::cutMeshToDisk(V, F, origin, &error)) return 1;
+  * \endcode
+  */
+inline bool cutMeshToDisk(MatrixXd& V, MatrixXi& F, VectorXi& origin, std::string* error = nullptr)
+{
+  MatrixXd Vdisk;
+  MatrixXi Fdisk;
+  if (!cutMeshToDisk(V, F, Vdisk, Fdisk, origin, error)) return false;
+  V.swap(Vdisk);
+  F.swap(Fdisk);
+  return true;
+}
+
 } // namespace Eigen
 
 #endif // EIGEN_MESHTOOLS_CUTTODISK_H
