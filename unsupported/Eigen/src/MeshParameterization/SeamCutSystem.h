@@ -371,9 +371,9 @@ private:
     return list;
   }
 
-  /** Ends an addSeam() whose cut mesh is in place (\a cutOk, else \a problem says why): the
-    * loop's new vertices leave the factor, and \a previous goes on the undo history; on failure
-    * the cut mesh of \a previous comes back. */
+  /** Ends an addSeam() whose cut is applied to the cut mesh (\a cutOk, else \a problem says why
+    * it is refused): the loop's new vertices leave the factor, and \a previous goes on the undo
+    * history; on failure the cut mesh of \a previous comes back. */
   bool commitCut(Snapshot& previous, const std::vector<int>& newlyRemoved, bool cutOk,
                  std::chrono::steady_clock::time_point start, std::string* error, std::string problem = std::string())
   {
@@ -430,6 +430,7 @@ private:
     for (int v : m_boundaryLoop) m_onLoop[std::size_t(v)] = 1;
     m_topology = snapshot.topology;
   }
+
   MatrixXd m_vertices, m_cutVertices, m_cornerWeights;
   MatrixXi m_faces, m_cutFaces;
   VectorXi m_origin;

@@ -69,19 +69,20 @@ inline bool seamCutInPlace(MatrixXd& V, MatrixXi& F, VectorXi& origin, std::vect
   };
   std::vector<std::vector<int>> wedgeOf(length);  // per path vertex: its corners' roots
   std::vector<Wedge> copies;
+  std::vector<int> parent, roots;
+  std::vector<std::pair<int, int>> ends;  // (other end, corner position) of every side at a path vertex
   for (std::size_t i = 0; i < length; ++i)
   {
     const std::vector<int>& list = corners[i];
     const int v = path[i];
     const int before = i > 0 ? path[i - 1] : -1, after = i + 1 < length ? path[i + 1] : -1;
-    std::vector<int> parent(list.size());
+    parent.resize(list.size());
     for (std::size_t a = 0; a < list.size(); ++a) parent[a] = int(a);
     auto find = [&parent](int a) {
       while (parent[std::size_t(a)] != a) a = parent[std::size_t(a)] = parent[std::size_t(parent[std::size_t(a)])];
       return a;
     };
-    // (other end, corner position) of every side at v: equal other ends share an edge
-    std::vector<std::pair<int, int>> ends;
+    ends.clear();  // (equal other ends share an edge)
     for (std::size_t a = 0; a < list.size(); ++a)
     {
       const int f = list[a] / 3, c = list[a] % 3;
@@ -96,20 +97,22 @@ inline bool seamCutInPlace(MatrixXd& V, MatrixXi& F, VectorXi& origin, std::vect
       while (e < ends.size() && ends[e].first == ends[b].first) ++e;
       const int w = ends[b].first;
       if (e - b > 2 || w == v) return unmark();  // an edge on three triangles, or a degenerate one
-      if (w == before) pathEdge[0] = true;
-      if (w == after) pathEdge[1] = true;
-      if (e - b == 2 && w != before && w != after)
+      if (w == before || w == after)
+      {  // a cut edge: it must be interior (else the seam runs along the boundary) and joins nothing
+        if (e - b == 1) return unmark();
+        pathEdge[w == before ? 0 : 1] = true;
+        continue;
+      }
+      if (e - b == 2)
       {
         const int x = find(ends[b].second), y = find(ends[b + 1].second);
         if (x != y) parent[std::size_t(std::max(x, y))] = std::min(x, y);
       }
-      if (e - b == 2 && (w == before || w == after)) continue;  // a cut interior edge
-      if (e - b == 1 && (w == before || w == after)) return unmark();  // the seam runs along the boundary
     }
     if (!pathEdge[0] || !pathEdge[1]) return unmark();  // a step of the path is not an edge
     // the roots are the smallest positions of their wedges: positions follow F, so a root is
     // its wedge's first corner; the wedge of the vertex's first corner (position 0) keeps v
-    std::vector<int> roots;
+    roots.clear();
     for (std::size_t a = 0; a < list.size(); ++a)
     {
       wedgeOf[i].push_back(find(int(a)));
