@@ -164,6 +164,47 @@ typename Cfg::FullMatrix meshLaplacian(bool closed) {
 /** Random sequence of splits, merges (undo of the latest split), removals, restores and value
   * changes, checking every step. \returns how many splits and merges took the Mixed route
   * (refactorization below, signed low-rank folds on top). */
+/** The dofs below \a nb whose column differs between \a small (nb × nb) and \a large (its
+  * leading block, and zero below it), as a cut tool knows them. */
+template <typename Dense>
+std::vector<int> changedColumns(const Dense& small, const Dense& large, Index nb) {
+  std::vector<int> changed;
+  for (Index j = 0; j < nb; ++j)
+    if (small.col(j) != large.col(j).head(nb) || !large.col(j).tail(large.rows() - nb).isZero(0))
+      changed.push_back(int(j));
+  return changed;
+}
+
+/** A shorter changed list that still names a dof of every changed entry between dofs below
+  * \a nb, one of the two picked at random (as updateColumns() takes the columns of an entry:
+  * its row is found by symmetry); entries at the other dofs (copies, merged dofs) are found
+  * through their origins. */
+template <typename Dense>
+std::vector<int> oneDofPerChangedEntry(const Dense& small, const Dense& large, Index nb, std::mt19937& coin) {
+  std::vector<char> named(nb, 0);
+  for (Index j = 0; j < nb; ++j)
+    for (Index i = j; i < nb; ++i)
+      if (small(i, j) != large(i, j) && !named[i] && !named[j]) named[coin() % 2 ? i : j] = 1;
+  std::vector<int> changed;
+  for (Index j = 0; j < nb; ++j)
+    if (named[j]) changed.push_back(int(j));
+  return changed;
+}
+
+/** Negates the weights of up to two edges of \a G between old dofs that are not split (\a origin:
+  * cut_mesh's I of the last split): their entries change, their diagonals do not, so a changed
+  * list naming one dof of each such entry (oneDofPerChangedEntry()) names only one of the two. */
+template <typename Scalar>
+void flipEdgesAwayFrom(SplitGraph<Scalar>& G, const std::vector<int>& origin, std::mt19937& coin) {
+  std::vector<char> split(G.n, 0);
+  for (std::size_t x = 0; x < origin.size(); ++x)
+    if (Index(origin[x]) != Index(x)) split[x] = split[origin[x]] = 1;
+  std::vector<std::pair<Index, Index> > candidates;
+  for (const auto& e : G.edges)
+    if (!split[e.first.first] && !split[e.first.second]) candidates.push_back(e.first);
+  for (int k = 0; k < 2 && !candidates.empty(); ++k) G.edges[candidates[coin() % candidates.size()]] *= Scalar(-1);
+}
+
 template <typename Cfg>
 int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route, int steps, unsigned seed,
                    bool pureCuts = false) {
@@ -217,17 +258,19 @@ int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route,
       }
       splits.push_back(Split{G, {}});
       splits.back().origin = G.split(origins, g, pureCuts);
+      const bool told = g() % 2 == 0;
+      std::mt19937 coin(unsigned(seed + 7919 * step));  // (its own stream: g's stays as it was)
+      if (told && !pureCuts && coin() % 2) flipEdgesAwayFrom(G, splits.back().origin, coin);
       const FullMatrix cut = G.template matrix<FullMatrix>();
-      if (g() % 2) {
+      if (!told) {
         llt.insertDofs(toInput<Cfg>(cut), splits.back().origin);
       } else {  // told the changed old dofs: those whose column differs (as a cut tool knows them)
         typedef Eigen::Matrix<typename Cfg::Scalar, Eigen::Dynamic, Eigen::Dynamic> DenseMatrix;
         const DenseMatrix before = DenseMatrix(splits.back().before.template matrix<FullMatrix>()), after = DenseMatrix(cut);
         const Index nb = before.rows();
-        std::vector<int> changed;
-        for (Index j = 0; j < nb; ++j)
-          if (before.col(j) != after.col(j).head(nb) || !after.col(j).tail(after.rows() - nb).isZero(0))
-            changed.push_back(int(j));
+        const std::vector<int> changed =
+            coin() % 2 ? changedColumns(before, after, nb)
+                       : oneDofPerChangedEntry(before, after, nb, coin);
         llt.insertDofs(toInput<Cfg>(cut), splits.back().origin, changed);
       }
       REQUIRE(llt.info() == Eigen::Success);
@@ -248,10 +291,10 @@ int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route,
         typedef Eigen::Matrix<typename Cfg::Scalar, Eigen::Dynamic, Eigen::Dynamic> DenseMatrix;
         const DenseMatrix before = DenseMatrix(cut), after = DenseMatrix(merged);
         const Index nb = after.rows();
-        std::vector<int> changed;
-        for (Index j = 0; j < nb; ++j)
-          if (after.col(j) != before.col(j).head(nb) || !before.col(j).tail(before.rows() - nb).isZero(0))
-            changed.push_back(int(j));
+        std::mt19937 coin(unsigned(seed + 7919 * step));
+        const std::vector<int> changed =
+            coin() % 2 ? changedColumns(after, before, nb)
+                       : oneDofPerChangedEntry(after, before, nb, coin);
         llt.mergeDofs(toInput<Cfg>(merged), s.origin, changed);
       }
       REQUIRE(llt.info() == Eigen::Success);

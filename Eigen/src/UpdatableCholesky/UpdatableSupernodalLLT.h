@@ -219,13 +219,14 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   template <typename Indices>
   UpdatableSupernodalLLT& insertDofs(const MatrixType& matrix, const Indices& origin);
 
-  /** insertDofs() told which old dofs may have changed, as updateColumns() is: besides the
-    * copies and their origins, only the dofs in \a changed may have rows and columns that differ
-    * from the current matrix (a cut tool knows them: the seam's vertices and their neighbours).
-    * Only the outer vectors of \a matrix that can hold such an entry are read (those of these
-    * dofs, of the copies, and of their neighbours), so the call costs what the cut costs, not
-    * what the whole matrix costs. An entry that differs elsewhere is not seen: the factor would
-    * not be that of \a matrix. \a changed out of range or repeated: info() is InvalidInput. */
+  /** insertDofs() told which old dofs may have changed, as updateColumns() is: every entry that
+    * differs from the current matrix lies in the row or column of a copy, of an origin or of a
+    * dof in \a changed (one of an entry's two dofs is enough; a cut tool knows them: the seam's
+    * vertices). Only the outer vectors of \a matrix that can hold such an entry are read (those
+    * of these dofs, of the copies, and of the neighbours that store their entries), so the call
+    * costs what the cut costs, not what the whole matrix costs. An entry that differs elsewhere
+    * is not seen: the factor would not be that of \a matrix. \a changed out of range or
+    * repeated: info() is InvalidInput. */
   template <typename Indices, typename ChangedIndices>
   UpdatableSupernodalLLT& insertDofs(const MatrixType& matrix, const Indices& origin, const ChangedIndices& changed);
 
@@ -243,11 +244,11 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   UpdatableSupernodalLLT& mergeDofs(const MatrixType& matrix, const Indices& origin);
 
   /** mergeDofs() told which kept dofs may have changed (current numbering), as insertDofs() with
-    * a changed list: besides the merged dofs and the dofs they merge into, only the dofs in
-    * \a changed may have rows and columns that differ. When the merged dofs are the last ones
-    * (a cut undone), only the outer vectors of \a matrix that can hold such an entry are read.
-    * An entry that differs elsewhere is not seen. \a changed out of range or repeated: info() is
-    * InvalidInput. */
+    * a changed list: every entry that differs lies in the row or column of a merged dof, of a
+    * dof they merge into or of a dof in \a changed (one of an entry's two dofs is enough). When
+    * the merged dofs are the last ones (a cut undone), only the outer vectors of \a matrix that
+    * can hold such an entry are read. An entry that differs elsewhere is not seen. \a changed
+    * out of range or repeated: info() is InvalidInput. */
   template <typename Indices, typename ChangedIndices>
   UpdatableSupernodalLLT& mergeDofs(const MatrixType& matrix, const Indices& origin, const ChangedIndices& changed);
 
@@ -883,9 +884,13 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
 void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::collectCompared(DofChange& change, Index total) {
-  // the outer vectors (new numbering) that may hold a changed entry: those of the listed dofs,
-  // of the origins or merged dofs and the dofs they merge into, and of their neighbours (which
-  // hold their entries in the other triangle); and the new dofs'
+  // the outer vectors (new numbering) that may hold a changed entry. An entry lives in one outer
+  // vector; when a listed dof is its other index (its inner one), that outer vector is among
+  // the listed dof's transposed neighbours, as the entry was in the current pattern at the same
+  // place (both its dofs are old and keep their order). So: the listed dofs and their
+  // transposed neighbours; the origins or merged dofs and the dofs they merge into with all
+  // their neighbours (an entry at a copy or a merged dof replaces one at its origin, which the
+  // current pattern holds in either triangle); and the new dofs
   std::vector<StorageIndex>& compared = change.compared;
   std::vector<char>& listed = change.listed;
   compared.clear();
@@ -895,20 +900,20 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::collectCompared(DofC
     listed[x] = 1;
     compared.push_back(StorageIndex(x));
   };
-  auto addWithNeighbours = [&](Index i) {  // (i: a current dof)
+  auto addWithTransposed = [&](Index i) {  // (i: a current dof)
     add(change.newOfOld[i]);
-    for (Index p = m_store.begin[i]; p < m_store.end[i]; ++p) add(change.newOfOld[m_store.inner[p]]);
     for (Index q = m_transposed.begin[i]; q < m_transposed.end[i]; ++q) add(change.newOfOld[m_transposed.pool[q]]);
   };
   for (std::size_t k = 0; k < change.hint.size(); ++k) {
-    if (k + internal::updatable_cholesky::AssemblyPrefetchDistance < change.hint.size()) {  // (scattered lists: loads miss the cache)
-      const StorageIndex ahead = change.hint[k + internal::updatable_cholesky::AssemblyPrefetchDistance];
-      internal::prefetch(m_store.inner.data() + m_store.begin[ahead]);
-      internal::prefetch(m_transposed.pool.data() + m_transposed.begin[ahead]);
-    }
-    addWithNeighbours(change.hint[k]);
+    if (k + internal::updatable_cholesky::AssemblyPrefetchDistance < change.hint.size())  // (scattered lists: loads miss the cache)
+      internal::prefetch(m_transposed.pool.data() +
+                         m_transposed.begin[change.hint[k + internal::updatable_cholesky::AssemblyPrefetchDistance]]);
+    addWithTransposed(change.hint[k]);
   }
-  for (StorageIndex i : change.touched) addWithNeighbours(i);
+  for (StorageIndex i : change.touched) {
+    addWithTransposed(i);
+    for (Index p = m_store.begin[i]; p < m_store.end[i]; ++p) add(change.newOfOld[m_store.inner[p]]);
+  }
   for (Index x = m_n; x < total; ++x) add(x);  // the copies of an insertion
   if (Index(compared.size()) * 16 < total) {  // few: sorted
     for (StorageIndex x : compared) listed[x] = 0;
