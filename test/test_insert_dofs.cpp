@@ -837,9 +837,13 @@ TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was",
     for (typename FullMatrix::InnerIterator it(Acut, copy); it && neighbour < 0; ++it)
       if (it.row() != copy) neighbour = it.row();
     REQUIRE(neighbour >= 0);
+    Index originNeighbour = -1;  // an old dof next to the origin
+    for (typename FullMatrix::InnerIterator it(Acut, from); it && originNeighbour < 0; ++it)
+      if (it.row() != from && it.row() < n) originNeighbour = it.row();
+    REQUIRE(originNeighbour >= 0);
     for (const Eigen::UpdateRoute route : routes)
       for (const Scalar bad : badValues)
-        for (int where = 0; where < 4; ++where) {
+        for (int where = 0; where < 5; ++where) {
           CAPTURE(int(route));
           CAPTURE(where);
           llt.setUpdateRoute(route);
@@ -851,6 +855,10 @@ TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was",
           }
           if (where == 2) cut.coeffRef(from, from) = bad;              // an origin's pivot
           if (where == 3) cut.coeffRef(far, far) = bad;                // an old dof far from the cut
+          if (where == 4) {  // between an origin and an old neighbour: a folded supernode may hold it
+            cut.coeffRef(from, originNeighbour) = bad;
+            cut.coeffRef(originNeighbour, from) = bad;
+          }
           cut.makeCompressed();
           llt.insertDofs(toInput<Cfg>(cut), origin);
           CHECK(llt.info() == Eigen::NumericalIssue);
@@ -862,6 +870,13 @@ TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was",
     for (const Scalar bad : badValues) {
       FullMatrix merged = A;
       merged.coeffRef(from, from) = bad;
+      llt.mergeDofs(toInput<Cfg>(merged), origin);
+      CHECK(llt.info() == Eigen::NumericalIssue);
+      CHECK(llt.rows() == Acut.rows());
+      checkAgainstFresh<Cfg>(llt, Acut, g);
+      merged = A;  // between the origin and an old neighbour
+      merged.coeffRef(from, originNeighbour) = bad;
+      merged.coeffRef(originNeighbour, from) = bad;
       llt.mergeDofs(toInput<Cfg>(merged), origin);
       CHECK(llt.info() == Eigen::NumericalIssue);
       CHECK(llt.rows() == Acut.rows());

@@ -80,6 +80,7 @@ struct InputDiff {
   std::vector<StorageIndex> posMap;
   bool posMapIsIdentity = false;  ///< false after the store was assigned anew (analyzePattern())
   bool inPlace = false;         ///< the last diff rewrote outer vectors in place (else rebuilt the store)
+  Index nonFinite = -1;  ///< after a refused diff: the new dof whose outer vector holds a NaN or infinity, else -1
   std::vector<Rewrite> rewrites;  ///< in place: the outer vectors rewritten or dropped
   Index oldPool = 0, oldOuter = 0, oldLive = 0;  ///< in place: the store's previous extent
   std::vector<Index> fresh;     ///< new store positions of entries the current matrix lacks
@@ -164,6 +165,7 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
   const Index n = store.outerSize();
   d.changed.assign(n, 0);
   d.changedList.clear();
+  d.nonFinite = -1;
   auto setChanged = [&d](Index o) {
     if (d.changed[o]) return;
     d.changed[o] = 1;
@@ -249,9 +251,21 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
       if (d.inPlace) d.rewrites.push_back(typename InputDiff<Scalar, StorageIndex>::Rewrite{x, ob, oe});
     }
     const Index start = Index(out.inner.size());
+    auto refuse = [&]() {  // (the store and the flags as they were)
+      for (Index q = ob; q < oe; ++q) d.stamp[store.inner[q]] = -1;
+      if (!d.inPlace) std::swap(store, d.spare);  // (revert() swaps back)
+      d.revert(store);
+      return false;
+    };
     for (Index p = nb; p < ne; ++p) {
       const Index y = inner[p];
       if (!kept(x, y)) continue;
+      // a value that is not finite (NaN, infinity) is refused here, where every changed value
+      // passes: a fold of the unchanged top would not always meet it as a lost pivot
+      if (!(numext::isfinite)(values[p])) {
+        d.nonFinite = x;
+        return refuse();
+      }
       const Index np = Index(out.inner.size());
       out.inner.push_back(StorageIndex(y));
       out.values.push_back(values[p]);
@@ -265,12 +279,7 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
         d.stamp[oy] = -2;
         continue;
       }
-      if (x != y && !allowed(x, y)) {
-        for (Index q = ob; q < oe; ++q) d.stamp[store.inner[q]] = -1;
-        if (!d.inPlace) std::swap(store, d.spare);  // (revert() swaps back)
-        d.revert(store);
-        return false;
-      }
+      if (x != y && !allowed(x, y)) return refuse();
       if (ox >= 0) setChanged(ox);
       if (oy >= 0) setChanged(oy);
       d.fresh.push_back(np);
