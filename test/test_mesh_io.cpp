@@ -268,9 +268,13 @@ TEST_CASE("readers: malformed files give false and a message naming file, place 
   expectReadFailure(writeFile("e5.obj", "v 0 0 0\nv 1 0 0\n# comment\nf 1 2\n"), {"line 4", "2 corners"});
   expectReadFailure(writeFile("e6.obj", "v 0 0\n"), {"line 1", "three coordinates"});
   expectReadFailure(writeFile("e7.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n"), {"line 4", "out of range"});
+  // nothing an OBJ reader knows (another format under .obj, text): not an empty mesh
+  expectReadFailure(writeFile("e8.obj", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), {"no vertex record"});
+  expectReadFailure(writeFile("e9.obj", "hello\nworld\n"), {"no vertex record"});
   // OFF (through the existing reader)
   expectReadFailure(writeFile("e1.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"), {"line 6", "out of range"});
   expectReadFailure(writeFile("e2.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n"), {"file ends"});
+  expectReadFailure(writeFile("e3.off", "OFF\n3 1 -5\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), {"line 2", "negative edge count"});
   // PLY header
   const std::string vertexHeader = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
   const std::string faceHeader = "element face 1\nproperty list uchar int vertex_indices\n";

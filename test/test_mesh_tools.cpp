@@ -463,6 +463,24 @@ TEST_CASE("cutMesh: bad input gives false, a message, and untouched outputs") {
   untouched();
 }
 
+TEST_CASE("cutMesh: a degenerate face (a repeated vertex) gets no copy of its own") {
+  MatrixXd V(3, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  MatrixXi F(2, 3);
+  F << 0, 1, 2, 0, 0, 1;
+  MatrixXd Vcut;
+  MatrixXi Fcut;
+  VectorXi origin;
+  std::string error;
+  REQUIRE_MESSAGE(Eigen::cutMesh(V, F, {}, Vcut, Fcut, origin, &error), error);
+  CHECK(Vcut == V);  // no cut: the mesh as it was
+  CHECK(Fcut == F);
+  CHECK(origin == VectorXi::LinSpaced(3, 0, 2));
+  // cut along (1, 2), a boundary edge here: still nothing to open
+  REQUIRE_MESSAGE(Eigen::cutMesh(V, F, {{1, 2}}, Vcut, Fcut, origin, &error), error);
+  CHECK(Fcut == F);
+}
+
 TEST_CASE("massMatrix: hand-computed triangles, total area, positive diagonal") {
   // Right isosceles triangle (right angle at 0, not obtuse): Voronoi shares 1/4, 1/8, 1/8.
   MatrixXd V(3, 3);
@@ -607,6 +625,60 @@ TEST_CASE("meshTopology: disk, sphere, torus, holes, pieces, against independent
   MatrixXi bad(1, 3);
   bad << 0, -1, 2;
   CHECK(Eigen::meshTopology(bad).faces == 0);
+}
+
+TEST_CASE("meshTopology: not a consistently oriented manifold -> genus -1; huge unused indices cost nothing") {
+  // A Möbius strip of 5 quads (10 vertices, 10 triangles): Euler characteristic 0 and, whatever
+  // the order of its faces, a genus of -1 (not orientable), so that no disk tool accepts it.
+  MatrixXi moebius(10, 3);
+  moebius << 0, 9, 8, 3, 0, 2, 5, 2, 4, 5, 4, 7, 6, 9, 7, 7, 4, 6, 6, 8, 9, 5, 3, 2, 1, 0, 3, 1, 0, 8;
+  for (int reversed = 0; reversed < 2; ++reversed) {
+    CAPTURE(reversed);
+    const MatrixXi faces = reversed ? MatrixXi(moebius.colwise().reverse()) : moebius;
+    const Eigen::MeshTopology t = Eigen::meshTopology(faces);
+    CHECK(t.eulerCharacteristic == 0);
+    CHECK(t.genus == -1);
+    CHECK_FALSE(t.isDisk());
+  }
+  // A grid with one face flipped is no oriented surface either; flipping it back gives a disk.
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::gridMesh(5, 5, V, F);
+  REQUIRE(Eigen::meshTopology(F).isDisk());
+  MatrixXi flipped = F;
+  std::swap(flipped(12, 1), flipped(12, 2));
+  CHECK(Eigen::meshTopology(flipped).genus == -1);
+  CHECK_FALSE(Eigen::meshTopology(flipped).isDisk());
+  // An edge on three triangles: genus -1.
+  MatrixXi fin(3, 3);
+  fin << 0, 1, 2, 1, 0, 3, 0, 1, 4;
+  CHECK(Eigen::meshTopology(fin).genus == -1);
+
+  // A stray huge vertex index: the same counts as with the vertices renumbered, and cutToDisk
+  // names its cut edges by the original indices (no allocation per possible index: 2e9 here).
+  const int huge = 2000000000;
+  Eigen::icosphereMesh(1, V, F);
+  MatrixXi far = F;
+  for (Index k = 0; k < far.size(); ++k)
+    if (far.data()[k] == 5) far.data()[k] = huge;
+  const Eigen::MeshTopology a = Eigen::meshTopology(F), b = Eigen::meshTopology(far);
+  CHECK(b.vertices == a.vertices);
+  CHECK(b.edges == a.edges);
+  CHECK(b.components == a.components);
+  CHECK(b.genus == 0);
+  std::vector<std::array<int, 2>> cuts, farCuts;
+  std::string error;
+  REQUIRE(Eigen::cutToDisk(F, cuts, &error));
+  REQUIRE_MESSAGE(Eigen::cutToDisk(far, farCuts, &error), error);
+  REQUIRE(farCuts.size() == cuts.size());
+  for (std::size_t e = 0; e < cuts.size(); ++e)
+    for (int end = 0; end < 2; ++end) CHECK(farCuts[e][end] == (cuts[e][end] == 5 ? huge : cuts[e][end]));
+  // ... and cutMeshToDisk refuses it against V before any work
+  MatrixXd Vdisk;
+  MatrixXi Fdisk;
+  VectorXi origin;
+  CHECK_FALSE(Eigen::cutMeshToDisk(V, far, Vdisk, Fdisk, origin, &error));
+  CHECK(error.find("outside") != std::string::npos);
 }
 
 /** Cuts F along cutToDisk's edges and checks the result: a disk, every cut edge opened, no

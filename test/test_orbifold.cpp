@@ -441,6 +441,22 @@ TEST_CASE("Orbifold Tutte rejects bad input with a message")
   twoV << V, V;
   CHECK_FALSE(orbifold.setup(twoV, twoF, {0, 5, 9}, OrbifoldType::I));
   CHECK(orbifold.error().find("not a sphere") != std::string::npos);
+  // two spheres touching at two vertices: Euler characteristic 2 and one piece, but no sphere
+  MatrixXi touchingF = twoF;
+  const int n = int(V.rows());
+  for (Index k = 0; k < touchingF.size(); ++k) {
+    if (touchingF.data()[k] == n) touchingF.data()[k] = 40;
+    if (touchingF.data()[k] == n + 1) touchingF.data()[k] = 120;
+  }
+  MatrixXd touchingV = twoV;
+  touchingV.bottomRows(n).col(0).array() += 2.0;
+  CHECK_FALSE(orbifold.setup(touchingV, touchingF, {0, 5, 9}, OrbifoldType::I));
+  CHECK(orbifold.error().find("more than one fan") != std::string::npos);
+  // a vertex on no triangle would make the Laplacian singular: refused by name
+  MatrixXd extraV(n + 1, 3);
+  extraV << V, Eigen::RowVector3d(5, 5, 5);
+  CHECK_FALSE(orbifold.setup(extraV, F, {0, 5, 9}, OrbifoldType::I));
+  CHECK(orbifold.error().find("vertex " + std::to_string(n) + " is on no triangle") != std::string::npos);
   // a good setup, then a failing edit keeps the object usable
   REQUIRE(orbifold.setup(V, F, spreadCones(V, 3), OrbifoldType::I));
   REQUIRE(orbifold.compute());

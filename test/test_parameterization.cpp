@@ -253,6 +253,11 @@ TEST_CASE("Seams cut in place give the cut mesh and loop of the general cut, thr
       std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
       CHECK(system.boundaryLoop() == loop);
       CHECK(system.topology().genus == 0);
+      const Eigen::MeshTopology fresh = Eigen::meshTopology(s.F);  // (kept up to date by cuts in place too)
+      CHECK(system.topology().vertices == fresh.vertices);
+      CHECK(system.topology().edges == fresh.edges);
+      CHECK(system.topology().eulerCharacteristic == fresh.eulerCharacteristic);
+      CHECK(system.topology().boundaryLoops == fresh.boundaryLoops);
       CHECK(freshDirichletDifference(tutte.cutVertices(), tutte.cutFaces(), tutte.uv(), Eigen::LaplacianWeights::Uniform) <
             1e-9);
     };
@@ -483,6 +488,25 @@ TEST_CASE("Meshes that are not disks after the cut are refused with their topolo
   CHECK(error.find("one piece") != std::string::npos);
   CHECK_FALSE(bff.compute(V2, F2, {}, &error));
   CHECK(error.find("one piece") != std::string::npos);
+
+  // A Möbius strip: Euler characteristic 0 like an annulus, but not orientable (Tutte would
+  // accept an annulus, its second loop free; a strip would fold).
+  Eigen::MatrixXd M(10, 3);
+  Eigen::MatrixXi MF(10, 3);
+  for (int k = 0; k < 5; ++k)
+  {  // the centre line's angle 2*pi*k/5, the strip's direction turned by half of it
+    const double a = 2 * EIGEN_PI * k / 5, t = a / 2;
+    for (int side = 0; side < 2; ++side)
+    {
+      const double w = side ? 0.5 : -0.5, r = 1 + w * std::cos(t);
+      M.row(2 * k + side) << r * std::cos(a), r * std::sin(a), w * std::sin(t);
+    }
+  }
+  MF << 0, 9, 8, 3, 0, 2, 5, 2, 4, 5, 4, 7, 6, 9, 7, 7, 4, 6, 6, 8, 9, 5, 3, 2, 1, 0, 3, 1, 0, 8;
+  CHECK_FALSE(tutte.compute(M, MF, {}, &error));
+  CHECK(error.find("not an orientable manifold") != std::string::npos);
+  CHECK(tutte.info() == Eigen::InvalidInput);
+  CHECK_FALSE(bff.compute(M, MF, {}, &error));
 
   // The same objects go on with a disk.
   REQUIRE_MESSAGE(tutte.compute(G, H, {}, &error), error);

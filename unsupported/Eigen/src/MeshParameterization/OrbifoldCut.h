@@ -102,7 +102,8 @@ struct OrbifoldCutResult
 };
 
 /** \internal Checks that F is a closed, consistently oriented, connected surface of genus 0 (every
-  * directed edge once, with its reverse; Euler characteristic 2 over the used vertices).
+  * directed edge once, with its reverse; Euler characteristic 2 over the used vertices; one fan of
+  * triangles around each vertex).
   * \returns false with \a error set otherwise. */
 inline bool checkSphereTopology(const MatrixXi& F, std::string& error)
 {
@@ -131,6 +132,29 @@ inline bool checkSphereTopology(const MatrixXi& F, std::string& error)
     error = "the mesh is not a sphere: " + std::to_string(components) + " component(s), Euler characteristic " +
             std::to_string(euler) + " (genus 0 and one piece are needed)";
     return false;
+  }
+  // every vertex on one fan of triangles: two spheres touching at two vertices pass the counts
+  // above (Euler characteristic 2, one piece) but are no sphere
+  const std::vector<int> partner = internal::meshtools::sidePartners(F);  // (all >= 0 here)
+  std::vector<char> walked(std::size_t(3 * F.rows()), 0);
+  std::vector<char> hasFan(std::size_t(F.maxCoeff()) + 1, 0);
+  for (Index corner = 0; corner < 3 * F.rows(); ++corner)
+  {
+    if (walked[std::size_t(corner)]) continue;
+    const int v = F(corner / 3, corner % 3);
+    if (hasFan[std::size_t(v)])
+    {
+      error = "the mesh is not a sphere: the triangles around vertex " + std::to_string(v) +
+              " form more than one fan (surfaces touching at a vertex)";
+      return false;
+    }
+    hasFan[std::size_t(v)] = 1;
+    for (Index c = corner; !walked[std::size_t(c)];)
+    {  // to the next triangle around v, across the side that enters v
+      walked[std::size_t(c)] = 1;
+      const int across = partner[std::size_t(3 * (c / 3) + (c % 3 + 2) % 3)];
+      c = Index(across);  // (that side leaves v in the neighbour: its corner is at v)
+    }
   }
   return true;
 }

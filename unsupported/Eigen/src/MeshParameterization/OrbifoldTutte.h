@@ -101,7 +101,8 @@ public:
   /** Sets the mesh, the cones (in chain order, see OrbifoldType) and the orbifold type.
     * Assembles the cotan Laplacian of the closed mesh once. \returns false (see error()) on bad
     * input: F not a #F x 3 index matrix into V, a mesh that is not a closed, consistently oriented
-    * surface of genus 0 in one piece, wrong cone count, repeated or out-of-range cones. Faces
+    * surface of genus 0 in one piece (one fan of triangles around each vertex), a vertex on no
+    * triangle, wrong cone count, repeated or out-of-range cones. Faces
     * counter-clockwise seen from outside give a counter-clockwise (positively oriented) layout. */
   bool setup(const MatrixXd& V, const MatrixXi& F, const std::vector<int>& cones, OrbifoldType type)
   {
@@ -114,6 +115,13 @@ public:
     if (!checkCones(cones, type, Index(V.rows()))) return false;
     std::string why;
     if (!internal::mesh_parameterization::checkSphereTopology(F, why)) return fail(why);
+    {
+      std::vector<char> used(std::size_t(V.rows()), 0);
+      for (Index k = 0; k < F.size(); ++k) used[std::size_t(F.data()[k])] = 1;
+      for (Index v = 0; v < V.rows(); ++v)
+        if (!used[std::size_t(v)])
+          return fail("vertex " + std::to_string(v) + " is on no triangle (remove unused vertices first)");
+    }
     m_V = V;
     m_F = F;
     m_cones = cones;

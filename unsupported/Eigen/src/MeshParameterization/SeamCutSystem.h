@@ -109,6 +109,11 @@ public:
       {
         local.newBoundary.assign(path.begin() + 1, path.end());
         m_lastCutInPlace = true;
+        // a cut from the loop inwards keeps one piece and one loop (and so the Euler
+        // characteristic): each vertex it adds comes with one edge
+        const Index added = m_cutVertices.rows() - local.vertexCount;
+        m_topology.vertices += added;
+        m_topology.edges += added;
         std::rotate(m_boundaryLoop.begin(), std::min_element(m_boundaryLoop.begin(), m_boundaryLoop.end()),
                     m_boundaryLoop.end());
         m_onLoop.resize(std::size_t(m_cutVertices.rows()), 0);

@@ -140,6 +140,13 @@ inline bool cutMesh(const MatrixXd& V, const MatrixXi& F, const std::vector<std:
     }
   }
 
+  // A degenerate face's corners at one vertex are one point: one wedge (its sides are skipped
+  // above, and cornerOfVertex() names only the first of them).
+  for (int face = 0; face < int(F.rows()); ++face)
+    for (int k = 0; k < 3; ++k)
+      for (int l = k + 1; l < 3; ++l)
+        if (F(face, k) == F(face, l)) wedges.join(face * 3 + k, face * 3 + l);
+
   // Number the wedges: the first wedge of each vertex keeps its index, the others are appended.
   std::vector<int> wedgeVertex(std::size_t(3 * F.rows()), -1);
   std::vector<char> vertexTaken(static_cast<std::size_t>(n), 0);

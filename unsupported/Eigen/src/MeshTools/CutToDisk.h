@@ -42,6 +42,17 @@ inline bool cutToDisk(const MatrixXi& F, std::vector<std::array<int, 2>>& cutEdg
     return false;
   };
   if (F.rows() == 0 || F.cols() != 3 || F.minCoeff() < 0) return fail("F must be a non-empty #F x 3 index matrix");
+  {
+    MatrixXi compact;  // (a stray huge index: work on the used vertices, name the cuts by F's indices)
+    std::vector<int> used;
+    if (internal::meshtools::compactVertexIndices(F, compact, used))
+    {
+      if (!cutToDisk(compact, cutEdges, error)) return false;
+      for (auto& edge : cutEdges)
+        for (int& v : edge) v = used[std::size_t(v)];
+      return true;
+    }
+  }
   const std::vector<int> partner = internal::meshtools::sidePartners(F);
   const Index n = Index(F.maxCoeff()) + 1, sides = 3 * F.rows();
   for (Index side = 0; side < sides; ++side)
@@ -136,8 +147,9 @@ inline bool cutToDisk(const MatrixXi& F, std::vector<std::array<int, 2>>& cutEdg
 inline bool cutMeshToDisk(const MatrixXd& V, const MatrixXi& F, MatrixXd& Vdisk, MatrixXi& Fdisk, VectorXi& origin,
                           std::string* error = nullptr)
 {
-  std::vector<std::array<int, 2>> cuts;  // (cutMesh checks F against V)
-  return cutToDisk(F, cuts, error) && cutMesh(V, F, cuts, Vdisk, Fdisk, origin, error);
+  std::vector<std::array<int, 2>> cuts;
+  return internal::meshtools::checkTriangles(F, V.rows(), "cutMeshToDisk", error) && cutToDisk(F, cuts, error) &&
+         cutMesh(V, F, cuts, Vdisk, Fdisk, origin, error);
 }
 
 /** \ingroup MeshTools_Module

@@ -16,6 +16,23 @@ inline std::uint64_t undirectedEdgeKey(int a, int b)
   return (std::uint64_t(std::uint32_t(lo)) << 32) | std::uint64_t(std::uint32_t(hi));
 }
 
+/** \internal When the vertex indices of \a F span far more values than it has corners (the
+  * largest index is above twice the corner count: unused indices dominate), fills \a compact
+  * with F's used vertices renumbered 0..k-1 in increasing order and \a used with the index each
+  * stood for, and \returns true; otherwise \returns false (F may index arrays by vertex). The
+  * tools that allocate per vertex use it so that a stray huge index costs no huge allocation. */
+inline bool compactVertexIndices(const MatrixXi& F, MatrixXi& compact, std::vector<int>& used)
+{
+  if (F.size() == 0 || Index(F.maxCoeff()) < 2 * F.size()) return false;
+  used.assign(F.data(), F.data() + F.size());
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  compact.resize(F.rows(), F.cols());
+  for (Index k = 0; k < F.size(); ++k)
+    compact.data()[k] = int(std::lower_bound(used.begin(), used.end(), F.data()[k]) - used.begin());
+  return true;
+}
+
 /** \internal Key of the directed edge a -> b. */
 inline std::uint64_t directedEdgeKey(int a, int b)
 {

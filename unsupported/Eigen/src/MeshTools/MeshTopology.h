@@ -19,8 +19,10 @@ struct MeshTopology
   Index boundaryLoops = 0;        ///< closed chains of boundary edges (boundaryLoops())
   Index eulerCharacteristic = 0;  ///< vertices − edges + faces
   /** (2 · components − boundaryLoops − eulerCharacteristic) / 2: the number of handles summed
-    * over the pieces (0 for a sphere or a disk, 1 for a torus). Meaningful for an orientable
-    * manifold mesh; -1 when that count is odd or negative (non-manifold or non-orientable). */
+    * over the pieces (0 for a sphere or a disk, 1 for a torus). -1 when the mesh is not a
+    * consistently oriented manifold (an edge on three or more triangles, or two triangles that
+    * cross an edge in the same direction: a flipped face or a non-orientable surface such as a
+    * Möbius strip), or when that count is odd or negative. */
   Index genus = 0;
 
   /** \returns true for one piece of genus 0 with one boundary loop: a topological disk, what
@@ -35,6 +37,9 @@ namespace meshtools {
   * boundary loops are known: no sort beyond the one that found the partners. */
 inline MeshTopology topologyFromPartners(const MatrixXi& F, const std::vector<int>& partner, Index loopCount)
 {
+  MatrixXi compact;  // (the sides keep their face*3+corner names: the partners stay valid)
+  std::vector<int> used;
+  if (compactVertexIndices(F, compact, used)) return topologyFromPartners(compact, partner, loopCount);
   MeshTopology t;
   const Index n = Index(F.maxCoeff()) + 1;
   // connected pieces: union-find over the vertices of each face
@@ -68,10 +73,14 @@ inline MeshTopology topologyFromPartners(const MatrixXi& F, const std::vector<in
   // edges: one per boundary side, one per pair of partner sides, one per key of the sides that
   // share a non-manifold edge (rare: sorted apart)
   std::vector<std::uint64_t> crowded;
+  bool orientedManifold = true;  // no edge on three or more faces, none crossed twice the same way
   for (std::size_t side = 0; side < partner.size(); ++side)
   {
     const int other = partner[side];
     if (other == -1 || (other >= 0 && std::size_t(other) > side)) ++t.edges;
+    if (other == -2 ||
+        (other >= 0 && F(Index(side / 3), Index(side % 3)) != F(Index(other / 3), Index((other % 3 + 1) % 3))))
+      orientedManifold = false;
     if (other == -2)
       crowded.push_back(undirectedEdgeKey(F(Index(side / 3), Index(side % 3)), F(Index(side / 3), Index((side % 3 + 1) % 3))));
   }
@@ -81,7 +90,7 @@ inline MeshTopology topologyFromPartners(const MatrixXi& F, const std::vector<in
   t.boundaryLoops = loopCount;
   t.eulerCharacteristic = t.vertices - t.edges + t.faces;
   const Index twiceGenus = 2 * t.components - t.boundaryLoops - t.eulerCharacteristic;
-  t.genus = twiceGenus >= 0 && twiceGenus % 2 == 0 ? twiceGenus / 2 : Index(-1);
+  t.genus = orientedManifold && twiceGenus >= 0 && twiceGenus % 2 == 0 ? twiceGenus / 2 : Index(-1);
   return t;
 }
 

@@ -54,8 +54,9 @@ inline bool objParseCorner(const char*& p, long& vertexReference)
   * \param error  if not null, receives a message naming the file and line when reading fails,
   *               and is cleared on success.
   * \returns true on success. On failure (unreadable file, malformed record, reference 0 or out of
-  *          range, non-finite coordinate, face with fewer than 3 corners) \a V and \a F are left
-  *          unchanged.
+  *          range, non-finite coordinate, face with fewer than 3 corners, no vertex record but
+  *          lines that are no OBJ record: another format or not text) \a V and \a F are left
+  *          unchanged. A file of comments and OBJ records without vertices is an empty mesh.
   *
   * \sa readMesh(), writeMesh(), readOFF(), readPLY()
   */
@@ -76,6 +77,11 @@ inline bool readOBJ(const std::string& path, Eigen::MatrixXd& V, Eigen::MatrixXi
     std::vector<double> coords;
     std::vector<int> tris, corners;
     std::string line;
+    long foreign = 0;  // lines whose keyword OBJ does not define (another format, or no text file)
+    static const char* const objKeywords[] = {"vt", "vn", "vp", "g", "o", "s", "l", "p", "mg", "usemtl", "mtllib",
+                                              "cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm",
+                                              "trim", "hole", "scrv", "sp", "end", "con", "bevel", "c_interp",
+                                              "d_interp", "lod", "shadow_obj", "trace_obj", "ctech", "stech"};
     while (reader.nextDataLine(line))
     {
       const char* p = line.c_str();
@@ -126,7 +132,13 @@ inline bool readOBJ(const std::string& path, Eigen::MatrixXd& V, Eigen::MatrixXi
           tris.push_back(corners[c + 1]);
         }
       }
+      else if (std::find_if(std::begin(objKeywords), std::end(objKeywords),
+                            [&keyword](const char* k) { return keyword == k; }) == std::end(objKeywords))
+        ++foreign;
     }
+    if (coords.empty() && foreign > 0)  // (an empty OBJ is comments or OBJ records only)
+      return fail("no vertex record ('v x y z') and " + std::to_string(foreign) +
+                  " line(s) that are no OBJ record: not an OBJ mesh");
     return internal::meshReadFinish(reader, coords, tris, V, F, error, fail);
   }
   catch (const std::bad_alloc&)

@@ -280,6 +280,7 @@ inline bool readOFF(const std::string& path, Eigen::MatrixXd& V, Eigen::MatrixXi
       return fail("expected '#vertices #faces #edges' after the header");
     if (!internal::offOnlySpaceLeft(p) && (!internal::offParseLong(p, edgeCount) || !internal::offOnlySpaceLeft(p)))
       return fail("unexpected text after '#vertices #faces #edges'");
+    if (edgeCount < 0) return fail("negative edge count " + std::to_string(edgeCount));
     if (vertexCount < 0 || faceCount < 0)
       return fail("negative vertex or face count (" + std::to_string(vertexCount) + ", " +
                   std::to_string(faceCount) + ")");
