@@ -1,6 +1,7 @@
 // CholmodPeer: CHOLMOD's supernodal Cholesky (LL^T) as a benchmark peer, driven with a given
 // fill-reducing permutation so that it factors the same permuted matrix as the other solvers.
-// CHOLMOD is GPL: it is used by the benchmarks only, never by the library.
+// CHOLMOD is GPL: it is used by the benchmarks only, never by the library. It is the
+// refactorization peer of the paper's comparisons (§6.1, Fig. 6).
 
 #ifndef UPDATABLE_CHOLESKY_BENCH_CHOLMODPEER_H
 #define UPDATABLE_CHOLESKY_BENCH_CHOLMODPEER_H

@@ -1,6 +1,7 @@
 // RowdelPeer: CHOLMOD's row deletion (cholmod_rowdel, Davis & Hager 2005) as a benchmark peer for
 // removing dofs: one rank-2 modification of a simplicial LDL^T factor per dof, each given the
-// pattern of the row it deletes (cholmod_row_lsubtree), which is what makes it fast.
+// pattern of the row it deletes (cholmod_row_lsubtree), which is what makes it fast. It is the
+// Davis & Hager peer of the paper's Fig. 6 (§6.1).
 
 #ifndef UPDATABLE_CHOLESKY_BENCH_ROWDELPEER_H
 #define UPDATABLE_CHOLESKY_BENCH_ROWDELPEER_H

@@ -1,4 +1,6 @@
-// MatrixAssembly.h — reading the user's sparse matrix into the supernodal factor.
+// MatrixAssembly.h — reading the user's sparse matrix into the supernodal factor: its triangle
+// permuted by the fill-reducing ordering, and the per-supernode maps by which a factorization does
+// step (1) of the paper's Algorithm 1, L(k:n, k) <- A(k:n, k), a supernode at a time (§3.1, §3.4).
 //
 // The input may be column- or row-major, compressed or not, and the solver reads only its
 // UpLo triangle (diagonal included), which it keeps in an InputStore (InputStore.h). Analysis

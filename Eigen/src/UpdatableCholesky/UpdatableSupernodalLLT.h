@@ -3,6 +3,11 @@
 // SimplicialLLT. It ties together the symbolic analysis (SupernodalSymbolic.h), the factor
 // storage (SupernodalFactor.h), the input assembly (MatrixAssembly.h), the numeric
 // factorization (SupernodalNumeric.h) and the solve (SupernodalSolve.h). Paper §3.
+// It also drives the in-place updates: updateColumns/removeDofs/restoreDofs (paper §3.3 and §4.1,
+// Algorithm 3) and insertDofs/mergeDofs (§4.2, Algorithm 4) check their input here, pick the
+// update route and call DofUpdates.h, LowRankRemoval.h, DofInsertion.h, DofInsertionInput.h and
+// LowRankTopUpdate.h. solveDirichlet (§4.1) is here too, and solves use the forward
+// substitution kept between them (IncrementalForwardSolve.h).
 
 #ifndef EIGEN_UPDATABLE_SUPERNODAL_LLT_H
 #define EIGEN_UPDATABLE_SUPERNODAL_LLT_H
@@ -50,16 +55,27 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   using Base::m_isInitialized;
 
  public:
+  /** The type of the input matrix A. */
   typedef MatrixType_ MatrixType;
+  /** The fill-reducing ordering functor. */
   typedef Ordering_ OrderingType;
+  /** The triangle of A that is read (Lower or Upper, the template argument UpLo_). */
   enum { UpLo = UpLo_ };
+  /** The scalar type of A and of the factor. */
   typedef typename MatrixType::Scalar Scalar;
+  /** The real type of Scalar (that of logDeterminant()). */
   typedef typename MatrixType::RealScalar RealScalar;
+  /** The index type of A, of the factor and of the permutations. */
   typedef typename MatrixType::StorageIndex StorageIndex;
+  /** Column-major sparse matrix type in which matrixL() and matrixU() return the factor. */
   typedef SparseMatrix<Scalar, ColMajor, StorageIndex> CholMatrixType;
+  /** The return type of matrixL(). */
   typedef TriangularView<const CholMatrixType, Eigen::Lower> MatrixL;
+  /** The return type of matrixU(). */
   typedef TriangularView<const typename CholMatrixType::AdjointReturnType, Eigen::Upper> MatrixU;
+  /** The type of permutationP() and permutationPinv(). */
   typedef PermutationMatrix<Dynamic, Dynamic, StorageIndex> PermutationType;
+  /** The compile-time column counts of MatrixType; Eigen's Solve expression sizes the result of solve() by them. */
   enum { ColsAtCompileTime = MatrixType::ColsAtCompileTime, MaxColsAtCompileTime = MatrixType::MaxColsAtCompileTime };
   /** Solves with at most this many right-hand sides keep their forward substitution (setSolveCaching()). */
   enum { MaxCachedRightHandSides = 8 };

@@ -2,7 +2,8 @@
 // "As-Rigid-As-Possible Surface Modeling", §2-3): the best rotation of every vertex cell (SVD of
 // the weighted edge covariance, eq. 5-6, with the reflection fix), the ARAP energy (eq. 3) and the
 // right-hand side of the global step (eq. 8-9). Cells are the one-ring "spokes" with cotan weights,
-// read from the off-diagonal entries of the positive semi-definite cotan Laplacian.
+// read from the off-diagonal entries of the positive semi-definite cotan Laplacian. These are the
+// parts of an ARAP iteration that the paper's factor updates leave as they are (§5.3, §6.4).
 
 #ifndef EIGEN_MESHDEFORMATION_ARAPLOCALSTEP_H
 #define EIGEN_MESHDEFORMATION_ARAPLOCALSTEP_H

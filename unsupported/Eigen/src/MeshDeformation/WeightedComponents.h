@@ -1,7 +1,8 @@
 // WeightedComponents: the connected components of the graph of a symmetric sparse matrix's
 // non-zero off-diagonal entries. For a cotan Laplacian these are the blocks of its kernel: a
 // Dirichlet problem on the Laplacian is well posed exactly when every component holds a
-// constrained vertex (Sorkine & Alexa 2007, the global step of ARAP).
+// constrained vertex (Sorkine & Alexa 2007, the global step of ARAP). ArapDeformation (paper §5.3)
+// checks this before it solves.
 
 #ifndef EIGEN_MESHDEFORMATION_WEIGHTEDCOMPONENTS_H
 #define EIGEN_MESHDEFORMATION_WEIGHTEDCOMPONENTS_H

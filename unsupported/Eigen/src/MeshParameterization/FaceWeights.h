@@ -3,7 +3,8 @@
 // Flattening, Sawhney & Crane 2017, §3) and the Laplacian edge weights stored per corner
 // (cotangent: the weight of the edge opposite a corner is half the cotangent of its angle; uniform:
 // 1/2 per triangle, i.e. 1 per interior edge). Storing weights per face corner lets the same numbers
-// assemble the Laplacian of the uncut mesh and of any mesh cut from it (faces keep their order).
+// assemble the Laplacian of the uncut mesh and of any mesh cut from it (faces keep their order):
+// the matrix that the seam edits of the paper's §5.1 update in place (SeamCutSystem.h).
 
 #ifndef EIGEN_MESHPARAMETERIZATION_FACEWEIGHTS_H
 #define EIGEN_MESHPARAMETERIZATION_FACEWEIGHTS_H

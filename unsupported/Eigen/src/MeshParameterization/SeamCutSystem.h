@@ -40,6 +40,7 @@ public:
   /** The solver type: an updatable supernodal Cholesky factorization of the Laplacian. */
   typedef UpdatableSupernodalLLT<SparseMatrix<double>, Lower, Ordering_> Solver;
 
+  /** Empty system (isValid() is false): call compute() before anything else. */
   SeamCutSystem() = default;
 
   /** Factors the Laplacian of (\a V, \a F) with corner weights \a cornerWeights (#F x 3, see

@@ -2,7 +2,8 @@
 //
 // Input: vertex positions V (#V x 2 or #V x 3) and triangles F (#F x 3). Output: the #V x #V
 // symmetric positive semi-definite cotan Laplacian (positive diagonal, rows summing to zero),
-// with both triangles stored, assembled from triplets.
+// with both triangles stored, assembled from triplets. It is the system matrix A of the paper's
+// orbifold Tutte (§5.2) and ARAP (§5.3) applications and of its benchmarks (§6).
 
 #ifndef EIGEN_MESHTOOLS_COTANLAPLACIAN_H
 #define EIGEN_MESHTOOLS_COTANLAPLACIAN_H
