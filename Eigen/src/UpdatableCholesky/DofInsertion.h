@@ -40,10 +40,43 @@ struct DofRelabeling {
   std::vector<StorageIndex> oldPosition;  ///< new permuted -> old permuted, or -1 for a copy
   Index newSize = 0;
   Index firstMoved = 0;  ///< old permuted columns below this one keep their position
+  /** newPosition and oldPosition hold k at every k below this (kept by buildForCopies() between
+    * its calls, which then write only the rest) */
+  Index identityPrefix = 0;
+
+  /** build() for an insertion: nothing dropped, and copies is non-zero only at (some of) the old
+    * permuted columns \a at (increasing, distinct). The columns up to the first of them keep
+    * their positions; the rest move by the copies before them, which is written run by run (one
+    * run between two origins), in order, without reading copies per column. */
+  void buildForCopies(const std::vector<StorageIndex>& at) {
+    const Index n = Index(copies.size());
+    Index shift = 0;
+    for (StorageIndex p : at) shift += copies[p];
+    newSize = n + shift;
+    firstMoved = at.empty() ? n : Index(at.front()) + 1;  // (no copies: nothing moves)
+    newPosition.resize(n);
+    oldPosition.resize(newSize);
+    StorageIndex* EIGEN_RESTRICT to = newPosition.data();
+    StorageIndex* EIGEN_RESTRICT from = oldPosition.data();
+    for (Index k = (std::min)(identityPrefix, firstMoved); k < firstMoved; ++k) to[k] = from[k] = StorageIndex(k);
+    shift = 0;
+    for (std::size_t q = 0; q < at.size(); ++q) {
+      const Index origin = Index(at[q]), count = Index(copies[origin]);
+      for (Index t = 1; t <= count; ++t) from[origin + shift + t] = StorageIndex(-1);  // its copies
+      shift += count;
+      const Index end = q + 1 < at.size() ? Index(at[q + 1]) + 1 : n;
+      for (Index k = origin + 1; k < end; ++k) {
+        to[k] = StorageIndex(k + shift);
+        from[k + shift] = StorageIndex(k);
+      }
+    }
+    identityPrefix = firstMoved;
+  }
 
   /** Fills newPosition and oldPosition from copies and the dropped flags (both by old permuted
     * column; \a dropped null: none). */
   void build(const char* dropped) {
+    identityPrefix = 0;
     const Index n = Index(copies.size());
     newPosition.resize(n);
     Index next = 0;

@@ -467,6 +467,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     typename PermutationType::IndicesType newPinv;  ///< its inverse (then the previous one)
     std::vector<StorageIndex> touched;    ///< current dofs dirty in any case (origins, merged)
     std::vector<StorageIndex> placed;     ///< insertion: copies placed per old permuted column, 0 between calls
+    std::vector<StorageIndex> originsAt;  ///< insertion: the origins' old permuted columns, increasing, once each
     std::vector<StorageIndex> previousRemoved;  ///< the removed dofs before the call (for a revert)
     internal::updatable_cholesky::DofRelabeling<StorageIndex> relabel;
     bool merging = false;
@@ -478,7 +479,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     /** Bytes held. */
     Index bytes() const {
       return Index((oldOfNew.capacity() + newOfOld.capacity() + preStart.capacity() + preList.capacity() +
-                    touched.capacity() + placed.capacity() + previousRemoved.capacity() + relabel.newPosition.capacity() +
+                    touched.capacity() + placed.capacity() + originsAt.capacity() + previousRemoved.capacity() +
+                    relabel.newPosition.capacity() +
                     relabel.copies.capacity() + relabel.oldPosition.capacity() + newPerm.size() + newPinv.size()) *
                    sizeof(StorageIndex));
     }
@@ -949,11 +951,35 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildInsertionLayout
   const Index n = m_n, total = Index(change.oldOfNew.size());
   const StorageIndex* perm = m_P.indices().data();
   auto& relabel = change.relabel;
-  relabel.build(nullptr);
+  std::vector<StorageIndex>& at = change.originsAt;  // the origins' permuted columns, increasing, once each
+  at.clear();
+  for (StorageIndex o : change.touched) at.push_back(perm[o]);
+  std::sort(at.begin(), at.end());
+  at.erase(std::unique(at.begin(), at.end()), at.end());
+  relabel.buildForCopies(at);
   // each copy right after its origin, copies of one origin in increasing order
   change.newPerm.resize(total);
   change.placed.resize(n, 0);  // (zero between calls)
-  for (Index i = 0; i < n; ++i) change.newPerm[i] = relabel.newPosition[perm[i]];
+  StorageIndex* EIGEN_RESTRICT newPerm = change.newPerm.data();
+  enum { FewOrigins = 8 };
+  if (Index(at.size()) <= Index(FewOrigins)) {
+    // the old dofs: p + the copies of the origins before p. With few origins, compares in one
+    // pass in order (vectorized) beat a lookup at a random place of newPosition per dof
+    StorageIndex bound[FewOrigins], count[FewOrigins];
+    for (Index q = 0; q < Index(FewOrigins); ++q) {
+      const bool used = q < Index(at.size());
+      bound[q] = used ? at[q] : NumTraits<StorageIndex>::highest();
+      count[q] = used ? relabel.copies[at[q]] : StorageIndex(0);
+    }
+    for (Index i = 0; i < n; ++i) {
+      const StorageIndex p = perm[i];
+      StorageIndex shift = 0;
+      for (Index q = 0; q < Index(FewOrigins); ++q) shift += p > bound[q] ? count[q] : StorageIndex(0);
+      newPerm[i] = p + shift;
+    }
+  } else {
+    for (Index i = 0; i < n; ++i) newPerm[i] = relabel.newPosition[perm[i]];
+  }
   for (Index i = n; i < total; ++i) {
     const StorageIndex po = perm[change.preList[i]];
     change.newPerm[i] = StorageIndex(relabel.newPosition[po] + 1 + change.placed[po]++);
