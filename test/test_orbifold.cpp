@@ -452,6 +452,20 @@ TEST_CASE("Orbifold Tutte rejects bad input with a message")
   touchingV.bottomRows(n).col(0).array() += 2.0;
   CHECK_FALSE(orbifold.setup(touchingV, touchingF, {0, 5, 9}, OrbifoldType::I));
   CHECK(orbifold.error().find("more than one fan") != std::string::npos);
+  // a degenerate triangle (0, 0, k) over a new edge keeps every count of a sphere: refused
+  {
+    std::vector<char> nearZero(std::size_t(n), 0);
+    for (Index f = 0; f < F.rows(); ++f)
+      for (int c = 0; c < 3; ++c)
+        if (F(f, c) == 0) nearZero[std::size_t(F(f, (c + 1) % 3))] = nearZero[std::size_t(F(f, (c + 2) % 3))] = 1;
+    int far = 1;
+    while (nearZero[std::size_t(far)]) ++far;
+    MatrixXi degenerateF(F.rows() + 1, 3);
+    degenerateF << F, Eigen::RowVector3i(0, 0, far);
+    CHECK_FALSE(orbifold.setup(V, degenerateF, {5, 9, 20}, OrbifoldType::I));
+    INFO(orbifold.error());  // (two fans at vertex 0, or the degenerate side met first)
+    CHECK(orbifold.error().find("the mesh is not a") != std::string::npos);
+  }
   // a vertex on no triangle would make the Laplacian singular: refused by name
   MatrixXd extraV(n + 1, 3);
   extraV << V, Eigen::RowVector3d(5, 5, 5);

@@ -125,7 +125,9 @@ inline bool checkSphereTopology(const MatrixXi& F, std::string& error)
               std::to_string(int(e.first & 0xffffffffu)) + " is on the boundary (a sphere-type mesh is needed)";
       return false;
     }
-  const MeshTopology topology = meshTopology(F);  // (closed and manifold here: no boundary loops)
+  // one sort of the sides for the counts and the fans below (closed here: no boundary loops)
+  const std::vector<int> partner = internal::meshtools::sidePartners(F);
+  const MeshTopology topology = internal::meshtools::topologyFromPartners(F, partner, 0);
   const Index components = topology.components, euler = topology.eulerCharacteristic;
   if (components != 1 || euler != 2)
   {
@@ -135,7 +137,6 @@ inline bool checkSphereTopology(const MatrixXi& F, std::string& error)
   }
   // every vertex on one fan of triangles: two spheres touching at two vertices pass the counts
   // above (Euler characteristic 2, one piece) but are no sphere
-  const std::vector<int> partner = internal::meshtools::sidePartners(F);  // (all >= 0 here)
   std::vector<char> walked(std::size_t(3 * F.rows()), 0);
   std::vector<char> hasFan(std::size_t(F.maxCoeff()) + 1, 0);
   for (Index corner = 0; corner < 3 * F.rows(); ++corner)
@@ -153,6 +154,11 @@ inline bool checkSphereTopology(const MatrixXi& F, std::string& error)
     {  // to the next triangle around v, across the side that enters v
       walked[std::size_t(c)] = 1;
       const int across = partner[std::size_t(3 * (c / 3) + (c % 3 + 2) % 3)];
+      if (across < 0)
+      {  // (a degenerate side, with a repeated vertex, has no partner)
+        error = "the mesh is not a manifold surface at vertex " + std::to_string(v) + " (a degenerate triangle)";
+        return false;
+      }
       c = Index(across);  // (that side leaves v in the neighbour: its corner is at v)
     }
   }

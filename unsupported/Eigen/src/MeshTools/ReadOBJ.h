@@ -77,7 +77,7 @@ inline bool readOBJ(const std::string& path, Eigen::MatrixXd& V, Eigen::MatrixXi
     std::vector<double> coords;
     std::vector<int> tris, corners;
     std::string line;
-    long foreign = 0;  // lines whose keyword OBJ does not define (another format, or no text file)
+    long foreign = 0;  // lines before the first vertex whose keyword OBJ does not define (another format, or no text)
     static const char* const objKeywords[] = {"vt", "vn", "vp", "g", "o", "s", "l", "p", "mg", "usemtl", "mtllib",
                                               "cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm",
                                               "trim", "hole", "scrv", "sp", "end", "con", "bevel", "c_interp",
@@ -132,7 +132,7 @@ inline bool readOBJ(const std::string& path, Eigen::MatrixXd& V, Eigen::MatrixXi
           tris.push_back(corners[c + 1]);
         }
       }
-      else if (std::find_if(std::begin(objKeywords), std::end(objKeywords),
+      else if (coords.empty() && std::find_if(std::begin(objKeywords), std::end(objKeywords),
                             [&keyword](const char* k) { return keyword == k; }) == std::end(objKeywords))
         ++foreign;
     }
