@@ -544,3 +544,48 @@ TEST_CASE("Bad seams are refused and change nothing")
   CHECK_FALSE(tutte.compute(V, badF, {}, &error));
   CHECK(tutte.info() == Eigen::InvalidInput);
 }
+
+TEST_CASE("A seam that cuts nothing is refused and leaves no undo step")
+{
+  // A seam along boundary edges, or one edge between interior vertices, opens nothing: addSeam
+  // says so and keeps the layout, and undo() then takes back the last real cut.
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  bumpyGrid(12, V, F);
+  auto check = [&](auto& parameterization) {
+    std::string error;
+    REQUIRE_MESSAGE(parameterization.compute(V, F, {}, &error), error);
+    const Eigen::MatrixXd uncut = parameterization.uv();
+    // a real cut from the interior vertex (5, 5) to the nearer (left or bottom) side
+    REQUIRE_MESSAGE(parameterization.addSeam(Eigen::seamToBoundary(V, F, 5 * 12 + 5), &error), error);
+    REQUIRE(parameterization.system().undoableSeams() == 1);
+    const Eigen::MatrixXd cut = parameterization.uv();
+    // along the top side, along the right side, one interior edge
+    const std::vector<std::vector<int>> idle = {{11 * 12, 11 * 12 + 1, 11 * 12 + 2, 11 * 12 + 3}, {11, 23},
+                                                {6 * 12 + 8, 6 * 12 + 9}};
+    for (const std::vector<int>& seam : idle)
+    {
+      CAPTURE(seam.front());
+      CHECK_FALSE(parameterization.addSeam(seam, &error));
+      CHECK(error.find("cuts nothing") != std::string::npos);
+      CHECK(parameterization.info() == Eigen::Success);
+      CHECK(parameterization.uv() == cut);
+      CHECK(parameterization.system().undoableSeams() == 1);
+    }
+    REQUIRE_MESSAGE(parameterization.undo(&error), error);
+    CHECK(parameterization.cutVertices().rows() == V.rows());
+    REQUIRE(parameterization.uv().rows() == uncut.rows());
+    CHECK((parameterization.uv() - uncut).cwiseAbs().maxCoeff() < 1e-9);
+    CHECK_FALSE(parameterization.undo());
+  };
+  SUBCASE("Tutte")
+  {
+    Eigen::TutteEmbedding<> tutte;
+    check(tutte);
+  }
+  SUBCASE("BFF")
+  {
+    Eigen::BoundaryFirstFlattening<> bff;
+    check(bff);
+  }
+}

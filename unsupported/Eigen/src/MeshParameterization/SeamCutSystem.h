@@ -92,7 +92,9 @@ public:
     * an edge) and removes the seam's new boundary vertices from the factor in place.
     * \returns false with a message (nothing changed) when the path is not an edge path, leaves a
     * copied vertex off the boundary loop (it does not start on the boundary, or it reaches the
-    * boundary again and splits the mesh), or the update fails. */
+    * boundary again and splits the mesh), cuts nothing open (it runs along boundary edges only, or
+    * is a single edge between inner vertices; then no undo step is recorded either), or the update
+    * fails. */
   bool addSeam(const std::vector<int>& path, std::string* error = nullptr)
   {
     if (!m_isValid) return fail("compute() first", error, false);
@@ -135,6 +137,10 @@ public:
     VectorXi localOrigin;
     if (!cutMeshAlongPath(m_cutVertices, m_cutFaces, path, cutV, cutF, localOrigin, &problem))
       return fail(problem, error, false);
+    if (cutV.rows() == m_cutVertices.rows())  // no vertex split: the same faces, nothing to undo
+      return fail("the seam cuts nothing open (its edges are boundary edges already, or it is a single edge "
+                  "between inner vertices): nothing changed and no undo step was recorded",
+                  error, false);
     m_cutVertices.swap(cutV);
     m_cutFaces.swap(cutF);
     VectorXi composed(localOrigin.size());

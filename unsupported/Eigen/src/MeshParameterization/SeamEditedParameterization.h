@@ -46,7 +46,9 @@ public:
   /** Cuts the mesh along \a path (vertex indices of the current cut mesh, cutVertices(); it must
     * start on the boundary and go inside without reaching the boundary again), updates the factor
     * in place (removeDofs of the seam) and lays the cut mesh out again.
-    * \returns false with a message (and nothing changed) on a bad path. */
+    * \returns false with a message (and nothing changed) on a bad path, and on a path that cuts
+    * nothing open (along boundary edges only, or a single edge between inner vertices): such a call
+    * records no undo step, so the next undo() takes back the last seam that did cut. */
   bool addSeam(const std::vector<int>& path, std::string* error = nullptr)
   {
     std::string problem;
