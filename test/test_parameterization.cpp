@@ -545,6 +545,53 @@ TEST_CASE("Bad seams are refused and change nothing")
   CHECK(tutte.info() == Eigen::InvalidInput);
 }
 
+TEST_CASE("Zero-area triangles and non-finite coordinates are refused where the weights need them")
+{
+  // Cotangent weights (harmonic Tutte, BFF) are undefined on a triangle of zero area, exactly or
+  // up to rounding, and on a non-finite corner: compute() refuses and names the face or vertex.
+  // Uniform Tutte reads no areas and lays a zero-area triangle out like any other (no flips).
+  // Thin triangles are kept by all three.
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  Eigen::gridMesh(5, 5, V, F);
+  REQUIRE(F.row(10) == Eigen::RowVector3i(6, 7, 12));  // the first face at vertex 12
+  Eigen::MatrixXd onEdge = V, rounded = V, notFinite = V, thin = V;
+  onEdge.row(12) << 0.375, 0.25, 0;  // on the edge (6, 7)
+  rounded.row(7) << 0.5, 0.3, 0.1;   // on the line through 6 and 7 up to rounding
+  rounded.row(12) = rounded.row(6) + (rounded.row(7) - rounded.row(6)) / 3.0;
+  notFinite(12, 2) = std::numeric_limits<double>::quiet_NaN();
+  thin.row(12) << 0.375, 0.25 + 1e-9, 0;
+  Eigen::TutteEmbedding<> uniform, harmonic;
+  harmonic.setWeights(Eigen::LaplacianWeights::Cotangent);
+  Eigen::BoundaryFirstFlattening<> bff;
+  std::string error;
+  auto refuses = [&](auto& parameterization, const Eigen::MatrixXd& P, const std::vector<std::string>& parts) {
+    CHECK_FALSE(parameterization.compute(P, F, {}, &error));
+    INFO("error: " << error);
+    for (const std::string& part : parts) CHECK(error.find(part) != std::string::npos);
+    CHECK(parameterization.info() == Eigen::InvalidInput);
+    CHECK(parameterization.uv().rows() == 0);
+  };
+  for (const Eigen::MatrixXd* zero : {&onEdge, &rounded})
+  {
+    CAPTURE(zero == &rounded);
+    refuses(harmonic, *zero, {"TutteEmbedding", "face 10 (vertices 6, 7, 12)", "zero area"});
+    refuses(bff, *zero, {"BoundaryFirstFlattening", "face 10 (vertices 6, 7, 12)", "zero area"});
+    REQUIRE_MESSAGE(uniform.compute(*zero, F, {}, &error), error);
+    CHECK(flippedTriangles(uniform.uv(), uniform.cutFaces()) == 0);
+  }
+  refuses(harmonic, notFinite, {"vertex 12", "non-finite"});
+  refuses(bff, notFinite, {"vertex 12", "non-finite"});
+  refuses(uniform, notFinite, {"vertex 12", "non-finite"});
+  REQUIRE_MESSAGE(harmonic.compute(thin, F, {}, &error), error);
+  CHECK(harmonic.uv().allFinite());
+  REQUIRE_MESSAGE(bff.compute(thin, F, {}, &error), error);
+  CHECK(bff.uv().allFinite());
+  CHECK(flippedTriangles(bff.uv(), bff.cutFaces()) == 0);
+  REQUIRE_MESSAGE(uniform.compute(thin, F, {}, &error), error);
+  CHECK(flippedTriangles(uniform.uv(), uniform.cutFaces()) == 0);
+}
+
 TEST_CASE("A seam that cuts nothing is refused and leaves no undo step")
 {
   // A seam along boundary edges, or one edge between interior vertices, opens nothing: addSeam

@@ -31,7 +31,7 @@ struct ArapConstraintEdit
   *   moveHandles());
   * - vertices outside the region of interest are held at their rest positions
   *   (setRegionOfInterest(); by default the whole mesh is free);
-  * - vertices used by no non-degenerate triangle are held at rest (they have no energy).
+  * - vertices used by no triangle are held at rest (they have no energy).
   *
   * solve() alternates the local step (best rotations by SVD, reflections excluded) and the global
   * step (the cotan Laplacian system with the constrained vertices as Dirichlet values); the
@@ -54,7 +54,8 @@ struct ArapConstraintEdit
   * arap.solve(U, 10);
   * \endcode
   *
-  * Bad input (indices out of range or repeated, wrong sizes, non-finite values, a connected
+  * Bad input (indices out of range or repeated, wrong sizes, non-finite values, a triangle of zero
+  * area up to rounding, whose cotan weights are undefined (see cotanLaplacian()), a connected
   * component without any constrained vertex) makes the call return false, leaves the object as it
   * was, and sets info() to InvalidInput and lastError() to a message saying what is wrong.
   *
@@ -210,9 +211,13 @@ bool ArapDeformation<Ordering_>::compute(const MatrixXd& V, const MatrixXi& F)
                                       std::to_string(F(f, c)) + ", out of range [0, " + std::to_string(V.rows()) +
                                       ")");
 
+  std::string problem;
+  SparseMatrixType laplacian = cotanLaplacian<double, int>(V, F, &problem);
+  if (!problem.empty()) return fail(InvalidInput, "ArapDeformation::compute: " + problem);
+
   const Index n = V.rows();
   m_rest = V;
-  m_laplacian = cotanLaplacian<double, int>(V, F);
+  m_laplacian.swap(laplacian);
   m_componentCount = internal::mesh_deformation::weightedComponents(m_laplacian, m_component);
 
   // L is singular (constants in its kernel): factor L + eps I so that the factor exists before

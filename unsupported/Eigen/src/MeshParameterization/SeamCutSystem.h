@@ -57,7 +57,13 @@ public:
     else if (F.cols() != 3 || F.rows() < 1) problem = "F must be #F x 3 with at least one triangle";
     else if (F.minCoeff() < 0 || F.maxCoeff() >= V.rows()) problem = "face index out of range";
     else if (cornerWeights.rows() != F.rows() || cornerWeights.cols() != 3) problem = "corner weights must be #F x 3";
-    else if (!V.allFinite() || !cornerWeights.allFinite()) problem = "coordinates and weights must be finite";
+    else if (!V.allFinite())
+    {
+      Index v = 0;
+      while (V.row(v).allFinite()) ++v;
+      problem = "vertex " + std::to_string(v) + " has a non-finite coordinate";
+    }
+    else if (!cornerWeights.allFinite()) problem = "the corner weights must be finite";
     else if (!(shift >= 0)) problem = "the shift must be >= 0";
     if (!problem.empty()) return fail(problem, error);
 
