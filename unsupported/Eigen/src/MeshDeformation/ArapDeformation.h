@@ -31,7 +31,7 @@ struct ArapConstraintEdit
   *   moveHandles());
   * - vertices outside the region of interest are held at their rest positions
   *   (setRegionOfInterest(); by default the whole mesh is free);
-  * - vertices used by no triangle are held at rest (they have no energy).
+  * - vertices used by no non-degenerate triangle are held at rest (they have no energy).
   *
   * solve() alternates the local step (best rotations by SVD, reflections excluded) and the global
   * step (the cotan Laplacian system with the constrained vertices as Dirichlet values); the
@@ -54,8 +54,7 @@ struct ArapConstraintEdit
   * arap.solve(U, 10);
   * \endcode
   *
-  * Bad input (indices out of range or repeated, wrong sizes, non-finite values, a triangle of zero
-  * area up to rounding, whose cotan weights are undefined (see cotanLaplacian()), a connected
+  * Bad input (indices out of range or repeated, wrong sizes, non-finite values, a connected
   * component without any constrained vertex) makes the call return false, leaves the object as it
   * was, and sets info() to InvalidInput and lastError() to a message saying what is wrong.
   *

@@ -41,7 +41,7 @@ inline MatrixXd cornerAngles(const MatrixXd& V, const MatrixXi& F)
   * contribution: cotangent (half the cotangent of the corner's angle, exactly as cotanLaplacian()
   * computes it) or uniform (1/2). \returns false, with \a problem naming the first face whose
   * cotangents are undefined (zero area up to rounding, or a non-finite corner: see
-  * cotanLaplacian()), for cotangent weights; uniform weights read no geometry and always succeed. */
+  * cotanLaplacian(), which skips the former), for cotangent weights; uniform weights read no geometry and always succeed. */
 inline bool cornerEdgeWeights(const MatrixXd& V, const MatrixXi& F, LaplacianWeights weights, MatrixXd& w,
                               std::string& problem)
 {
@@ -50,8 +50,8 @@ inline bool cornerEdgeWeights(const MatrixXd& V, const MatrixXi& F, LaplacianWei
   for (Index f = 0; f < F.rows(); ++f)
   {
     const Vector3d p[3] = {V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose()};
-    const double doubleArea = internal::meshtools::cotanDoubleArea(p);
-    if (doubleArea == 0.0)
+    double doubleArea = 0;
+    if (internal::meshtools::cotanFace(p, doubleArea) != internal::meshtools::CotanFace::Defined)
     {
       problem = internal::meshtools::cotanFaceProblem(V, F, f);
       return false;

@@ -123,6 +123,12 @@ public:
         if (!used[std::size_t(v)])
           return fail("vertex " + std::to_string(v) + " is on no triangle (remove unused vertices first)");
     }
+    for (Index f = 0; f < F.rows(); ++f) {  // (cotanLaplacian() would skip a zero-area triangle)
+      const Vector3d p[3] = {V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose()};
+      double doubleArea = 0;
+      if (internal::meshtools::cotanFace(p, doubleArea) != internal::meshtools::CotanFace::Defined)
+        return fail(internal::meshtools::cotanFaceProblem(V, F, f));
+    }
     MatrixType L0 = cotanLaplacian<double, int>(V, F, &why);
     if (!why.empty()) return fail(why);
     m_V = V;

@@ -3,9 +3,10 @@
 // Input: vertex positions V (#V x 2 or #V x 3) and triangles F (#F x 3). Output: the #V x #V
 // symmetric positive semi-definite cotan Laplacian (positive diagonal, rows summing to zero),
 // with both triangles stored, assembled from triplets. It is the system matrix A of the paper's
-// orbifold Tutte (§5.2) and ARAP (§5.3) applications and of its benchmarks (§6). A triangle whose
-// cotangents are undefined (zero area up to rounding, or a non-finite corner) is refused with a
-// message naming it; the check is shared with the parameterizations' corner weights (FaceWeights.h).
+// orbifold Tutte (§5.2) and ARAP (§5.3) applications and of its benchmarks (§6). A triangle of zero
+// area (up to rounding) contributes nothing; a non-finite corner is refused with a message naming
+// it. The classification is shared with the parameterizations' corner weights (FaceWeights.h),
+// which refuse both.
 
 #ifndef EIGEN_MESHTOOLS_COTANLAPLACIAN_H
 #define EIGEN_MESHTOOLS_COTANLAPLACIAN_H
@@ -15,21 +16,26 @@ namespace Eigen {
 namespace internal {
 namespace meshtools {
 
-/** \internal \returns twice the area of the triangle \a p when its cotangents are defined, and 0
-  * when they are not: a corner has a non-finite coordinate, or the area is zero up to rounding
-  * (twice the area at most 16 machine epsilons times the longest edge squared; thin triangles lie
-  * far above that and are kept). */
-inline double cotanDoubleArea(const Vector3d p[3])
+/** \internal Whether a triangle has cotangent weights. */
+enum class CotanFace { Defined, ZeroArea, NonFinite };
+
+/** \internal Classifies the triangle \a p and sets \a doubleArea to twice its area: NonFinite when
+  * a corner has a non-finite coordinate; ZeroArea when twice the area is at most 16 machine
+  * epsilons times the longest edge squared (its cotangents are undefined or meaningless; thin
+  * triangles lie far above that); Defined otherwise. */
+inline CotanFace cotanFace(const Vector3d p[3], double& doubleArea)
 {
-  const double doubleArea = (p[1] - p[0]).cross(p[2] - p[0]).norm();
+  for (int c = 0; c < 3; ++c)
+    if (!p[c].allFinite()) return CotanFace::NonFinite;
+  doubleArea = (p[1] - p[0]).cross(p[2] - p[0]).norm();
   const double longest =
       (std::max)({(p[1] - p[0]).squaredNorm(), (p[2] - p[1]).squaredNorm(), (p[0] - p[2]).squaredNorm()});
   const bool defined = std::isfinite(doubleArea) && std::isfinite(longest) &&
                        doubleArea > 16 * NumTraits<double>::epsilon() * longest;
-  return defined ? doubleArea : 0.0;
+  return defined ? CotanFace::Defined : CotanFace::ZeroArea;
 }
 
-/** \internal \returns why face \a f of (\a V, \a F), refused by cotanDoubleArea(), has no cotangent
+/** \internal \returns why face \a f of (\a V, \a F), not Defined by cotanFace(), has no cotangent
   * weights: the corner with a non-finite coordinate, or its zero area. */
 inline std::string cotanFaceProblem(const MatrixXd& V, const MatrixXi& F, Index f)
 {
@@ -62,15 +68,16 @@ inline std::string cotanFaceProblem(const MatrixXd& V, const MatrixXi& F, Index 
   *
   * A triangle of zero area has no defined cotangents, and one of area zero up to rounding (twice
   * its area at most 16 machine epsilons times its longest edge squared) has huge, meaningless
-  * ones; a non-finite corner coordinate makes them NaN. Such a mesh is refused: the result is
-  * then an empty 0 x 0 matrix and \a error names the first such face. Thin triangles are kept.
+  * ones: such a triangle contributes nothing (thin triangles are kept). A non-finite corner
+  * coordinate would make the weights NaN: such a mesh is refused, the result is then an empty
+  * 0 x 0 matrix and \a error names the first such face and vertex.
   *
   * \tparam Scalar        scalar type of the result (float, double, long double, std::complex<...>).
   * \tparam StorageIndex  index type of the result (int or long).
   * \param V      #V x 3 (or #V x 2, planar) vertex positions.
   * \param F      #F x 3 triangles, 0-based indices into the rows of V.
-  * \param error  if not null, receives a message naming the first triangle of zero area or with a
-  *               non-finite corner when the mesh is refused, and is cleared otherwise.
+  * \param error  if not null, receives a message naming the first triangle with a non-finite
+  *               corner when the mesh is refused, and is cleared otherwise.
   * \returns the #V x #V column-major cotan Laplacian, compressed; 0 x 0 for a refused mesh.
   *
   * \sa readOFF(), gridMesh(), icosphereMesh()
@@ -104,12 +111,14 @@ SparseMatrix<Scalar, ColMajor, StorageIndex> cotanLaplacian(const MatrixXd& V, c
                  corner[2] < n && "cotanLaplacian: face index out of range");
     const Vector3d p[3] = {position(corner[0]), position(corner[1]), position(corner[2])};
     // All three angles share the same |cross product| = twice the triangle area.
-    const double doubleArea = internal::meshtools::cotanDoubleArea(p);
-    if (doubleArea == 0.0)
+    double doubleArea = 0;
+    const internal::meshtools::CotanFace kind = internal::meshtools::cotanFace(p, doubleArea);
+    if (kind == internal::meshtools::CotanFace::NonFinite)
     {
       if (error) *error = "cotanLaplacian: " + internal::meshtools::cotanFaceProblem(V, F, f);
       return SparseMatrix<Scalar, ColMajor, StorageIndex>();
     }
+    if (kind == internal::meshtools::CotanFace::ZeroArea) continue;
 
     for (int c = 0; c < 3; ++c)
     {
