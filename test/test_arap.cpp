@@ -445,6 +445,14 @@ TEST_CASE("bad input gives a clear error and changes nothing") {
     nanV(2, 2) = std::nan("");
     CHECK_FALSE(arap.compute(nanV, F));
     CHECK(arap.lastError().find("NaN") != std::string::npos);
+    // a triangle of zero area is no error: it has no energy and its weights are left out
+    MatrixXd flatV = V;
+    flatV.row(F(0, 2)) = 0.5 * (V.row(F(0, 0)) + V.row(F(0, 1)));
+    REQUIRE(arap.compute(flatV, F));
+    REQUIRE(arap.setHandles({0, 1, int(n) - 1}));
+    MatrixXd U;
+    REQUIRE(arap.solve(U, 2));
+    CHECK(U.allFinite());
   }
 
   ArapDeformation<> arap(V, F);

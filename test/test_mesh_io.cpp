@@ -8,6 +8,7 @@
 
 #include <unsupported/Eigen/MeshTools>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -344,6 +345,78 @@ TEST_CASE("readers: malformed files give false and a message naming file, place 
     }
     bytes[bytes.size() - 6] ^= 0x55; // the CRC
     expectReadFailure(writeFile("c2.off.gz", bytes), {"readOFF"});
+  }
+}
+
+TEST_CASE("readPLY: ascii values must fit their declared property type") {
+  // An ascii value that the declared type cannot hold (that a binary file of the same header could
+  // not store) is refused with the line and the type, not wrapped or widened to a double.
+  auto ply = [](const std::string& header, const std::string& body) {
+    return "ply\nformat ascii 1.0\n" + header + "end_header\n" + body;
+  };
+  auto bodyLine = [](const std::string& header, int k) { // "line N" of the k-th body line (0-based)
+    return "line " + std::to_string(2 + std::count(header.begin(), header.end(), '\n') + 2 + k);
+  };
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  const std::string vertices = "element vertex 3\n" + xyz;
+  const std::string triangle = "0 0 0\n1 0 0\n0 1 0\n";
+  const std::string ucharFace = "element face 1\nproperty list uchar int vertex_indices\n";
+  // list counts: beyond the count type (also in an element that is only skipped), negative
+  {
+    const std::string h = vertices + ucharFace + "element extra 1\nproperty list uchar int values\n";
+    std::string values = "256";
+    for (int k = 0; k < 256; ++k) values += " 0";
+    expectReadFailure(writeFile("t1.ply", ply(h, triangle + "3 0 1 2\n" + values + "\n")),
+                      {bodyLine(h, 4), "extra 0", "'256'", "uchar"});
+  }
+  expectReadFailure(writeFile("t2.ply", ply(vertices + ucharFace, triangle + "300 0 1 2\n")),
+                    {bodyLine(vertices + ucharFace, 3), "face 0", "'300'", "uchar"});
+  expectReadFailure(writeFile("t3.ply", ply(vertices + ucharFace, triangle + "-3 0 1 2\n")),
+                    {bodyLine(vertices + ucharFace, 3), "face 0", "'-3'", "uchar"});
+  {
+    const std::string h = vertices + "element face 1\nproperty list char int vertex_indices\n";
+    expectReadFailure(writeFile("t4.ply", ply(h, triangle + "-1 0 1 2\n")), {bodyLine(h, 3), "not a non-negative integer"});
+  }
+  // vertex indices: beyond the index type even where the mesh has that many vertices, overflowing int
+  {
+    std::string many;
+    for (int k = 0; k < 300; ++k) many += std::to_string(k) + " 0 0\n";
+    const std::string h = "element vertex 300\n" + xyz + "element face 1\nproperty list uchar uchar vertex_indices\n";
+    expectReadFailure(writeFile("t5.ply", ply(h, many + "3 0 1 256\n")), {bodyLine(h, 300), "face 0", "'256'", "uchar"});
+  }
+  expectReadFailure(writeFile("t6.ply", ply(vertices + ucharFace, triangle + "3 0 1 2147483648\n")),
+                    {bodyLine(vertices + ucharFace, 3), "'2147483648'", "int"});
+  expectReadFailure(writeFile("t7.ply", ply(vertices + ucharFace, triangle + "3 0 1 -1\n")),
+                    {bodyLine(vertices + ucharFace, 3), "vertex index -1"});
+  // scalars: a fraction, or out of range, in an integer property (read or skipped); beyond float
+  {
+    const std::string h = "element vertex 3\nproperty int x\nproperty float y\nproperty float z\n" + ucharFace;
+    expectReadFailure(writeFile("t8.ply", ply(h, "0 0 0\n0.5 0 0\n0 1 0\n3 0 1 2\n")), {bodyLine(h, 1), "'0.5'", "int"});
+  }
+  {
+    const std::string h = "element vertex 3\n" + xyz + "property uchar red\nproperty short level\n" + ucharFace;
+    expectReadFailure(writeFile("t9.ply", ply(h, "0 0 0 1.5 0\n1 0 0 0 0\n0 1 0 0 0\n3 0 1 2\n")),
+                      {bodyLine(h, 0), "vertex 0", "'1.5'", "uchar"});
+    expectReadFailure(writeFile("t10.ply", ply(h, "0 0 0 0 0\n1 0 0 0 40000\n0 1 0 0 0\n3 0 1 2\n")),
+                      {bodyLine(h, 1), "vertex 1", "'40000'", "short"});
+    expectReadFailure(writeFile("t11.ply", ply(h, "0 0 0 0 0\n1 0 0 0 0\n0 1 0 nan 0\n3 0 1 2\n")),
+                      {bodyLine(h, 2), "vertex 2", "'nan'", "uchar"});
+  }
+  expectReadFailure(writeFile("t12.ply", ply(vertices + ucharFace, "0 0 0\n1 0 1e39\n0 1 0\n3 0 1 2\n")),
+                    {bodyLine(vertices + ucharFace, 1), "'1e39'", "float"});
+  // the limits of each type are accepted
+  {
+    const std::string h = "element vertex 3\n" + xyz +
+                          "property char a\nproperty uchar b\nproperty short c\nproperty ushort d\nproperty int e\n"
+                          "property uint f\nproperty double g\n" + ucharFace;
+    const std::string limits = " -128 255 -32768 65535 -2147483648 4294967295 1e300\n";
+    MatrixXd V;
+    MatrixXi F;
+    readOrFail(writeFile("t13.ply", ply(h, "0 0 3.4028235e38" + limits + "1 0 -3.4028235e38 127 0 32767 0 2147483647 0 -1e300\n"
+                                           "0 1 1e-50 0 0 0 0 0 0 0\n3 0 1 2\n")),
+               V, F);
+    CHECK(V(0, 2) == 3.4028235e38); // (read as written: float range, double value)
+    CHECK(F.rows() == 1);
   }
 }
 

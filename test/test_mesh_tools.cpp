@@ -3,7 +3,8 @@
 // Floyd-Warshall on small grids), cutMesh / cutMeshAlongPath (vertex copies, Euler
 // characteristic, face correspondence through origin, boundary edges, disks from trees),
 // meshTopology (counts against independent ones on disks, spheres, tori, holes, pieces),
-// cutToDisk (the cut meshes are disks, no dangling cuts) and massMatrix (total area, positive diagonal, hand-computed triangles).
+// cutToDisk (the cut meshes are disks, no dangling cuts), massMatrix (total area, positive diagonal, hand-computed triangles)
+// and the triangles cotanLaplacian skips (zero area), refuses (non-finite corners) or keeps (thin ones).
 #include <doctest/doctest.h>
 
 #include <unsupported/Eigen/MeshTools>
@@ -479,6 +480,67 @@ TEST_CASE("cutMesh: a degenerate face (a repeated vertex) gets no copy of its ow
   // cut along (1, 2), a boundary edge here: still nothing to open
   REQUIRE_MESSAGE(Eigen::cutMesh(V, F, {{1, 2}}, Vcut, Fcut, origin, &error), error);
   CHECK(Fcut == F);
+}
+
+TEST_CASE("cotanLaplacian: zero-area triangles contribute nothing, non-finite coordinates are refused, thin ones kept") {
+  // A flat 5 x 5 grid (coordinates in quarters, exact); face 10 is (6, 7, 12), the first face at 12.
+  MatrixXd V;
+  MatrixXi F;
+  Eigen::gridMesh(5, 5, V, F);
+  REQUIRE(F.row(10) == Eigen::RowVector3i(6, 7, 12));
+  auto doubleArea = [&](const MatrixXd& P, Index f) {
+    const Eigen::Vector3d a = P.row(F(f, 0)), b = P.row(F(f, 1)), c = P.row(F(f, 2));
+    return (b - a).cross(c - a).norm();
+  };
+  std::string error = "untouched";
+  CHECK(Eigen::cotanLaplacian(V, F, &error).rows() == V.rows());
+  CHECK(error.empty());
+  // the Laplacian of the mesh without face 10, for the zero-area cases
+  MatrixXi withoutFace(F.rows() - 1, 3);
+  withoutFace << F.topRows(10), F.bottomRows(F.rows() - 11);
+  auto skipsFace10 = [&](const MatrixXd& P) {
+    error = "untouched";
+    const Eigen::SparseMatrix<double> L = Eigen::cotanLaplacian(P, F, &error);
+    CHECK(error.empty());
+    REQUIRE(L.rows() == P.rows());
+    CHECK(Eigen::MatrixXd(L).allFinite());
+    CHECK(Eigen::MatrixXd(L) == Eigen::MatrixXd(Eigen::cotanLaplacian(P, withoutFace)));
+  };
+  // vertex 12 on the edge (6, 7): zero area exactly
+  MatrixXd P = V;
+  P.row(12) << 0.375, 0.25, 0;
+  REQUIRE(doubleArea(P, 10) == 0);
+  skipsFace10(P);
+  // vertex 12 on the line through 6 and a raised 7, up to rounding only
+  P = V;
+  P.row(7) << 0.5, 0.3, 0.1;
+  P.row(12) = P.row(6) + (P.row(7) - P.row(6)) / 3.0;
+  REQUIRE(doubleArea(P, 10) > 0);
+  REQUIRE(doubleArea(P, 10) < 1e-15);
+  skipsFace10(P);
+  // a non-finite coordinate: refused, with and without a message
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    P = V;
+    P(12, 1) = bad;
+    error.clear();
+    CHECK(Eigen::cotanLaplacian(P, F, &error).rows() == 0);
+    CHECK(Eigen::cotanLaplacian(P, F).rows() == 0);
+    INFO("error: " << error);
+    for (const std::string part : {"cotanLaplacian", "face 10 (vertices 6, 7, 12)", "vertex 12", "non-finite"})
+      CHECK(error.find(part) != std::string::npos);
+  }
+  // kept: a thin triangle (angles of about 1e-8), and a non-finite vertex on no triangle
+  P = V;
+  P.row(12) << 0.375, 0.25 + 1e-9, 0;
+  const Eigen::SparseMatrix<double> thin = Eigen::cotanLaplacian(P, F, &error);
+  CHECK(error.empty());
+  REQUIRE(thin.rows() == V.rows());
+  CHECK(Eigen::MatrixXd(thin).allFinite());
+  CHECK(std::abs(thin.coeff(6, 7)) > 1e7);  // (the nearly straight angle at 12, opposite (6, 7))
+  P.conservativeResize(V.rows() + 1, 3);
+  P.row(V.rows()) << std::numeric_limits<double>::quiet_NaN(), 0, 0;
+  CHECK(Eigen::cotanLaplacian(P, F, &error).rows() == P.rows());
+  CHECK(error.empty());
 }
 
 TEST_CASE("massMatrix: hand-computed triangles, total area, positive diagonal") {

@@ -471,6 +471,16 @@ TEST_CASE("Orbifold Tutte rejects bad input with a message")
   extraV << V, Eigen::RowVector3d(5, 5, 5);
   CHECK_FALSE(orbifold.setup(extraV, F, {0, 5, 9}, OrbifoldType::I));
   CHECK(orbifold.error().find("vertex " + std::to_string(n) + " is on no triangle") != std::string::npos);
+  // no cotan weights: a triangle of zero area (up to rounding), a non-finite coordinate
+  MatrixXd flatV = V;
+  flatV.row(F(0, 2)) = 0.5 * (V.row(F(0, 0)) + V.row(F(0, 1)));
+  CHECK_FALSE(orbifold.setup(flatV, F, {0, 5, 9}, OrbifoldType::I));
+  CHECK(orbifold.error().find("face 0") != std::string::npos);
+  CHECK(orbifold.error().find("zero area") != std::string::npos);
+  MatrixXd nanV = V;
+  nanV(7, 1) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_FALSE(orbifold.setup(nanV, F, {0, 5, 9}, OrbifoldType::I));
+  CHECK(orbifold.error().find("vertex 7 has a non-finite coordinate") != std::string::npos);
   // a good setup, then a failing edit keeps the object usable
   REQUIRE(orbifold.setup(V, F, spreadCones(V, 3), OrbifoldType::I));
   REQUIRE(orbifold.compute());

@@ -544,3 +544,95 @@ TEST_CASE("Bad seams are refused and change nothing")
   CHECK_FALSE(tutte.compute(V, badF, {}, &error));
   CHECK(tutte.info() == Eigen::InvalidInput);
 }
+
+TEST_CASE("Zero-area triangles and non-finite coordinates are refused where the weights need them")
+{
+  // Cotangent weights (harmonic Tutte, BFF) are undefined on a triangle of zero area, exactly or
+  // up to rounding, and on a non-finite corner: compute() refuses and names the face or vertex.
+  // Uniform Tutte reads no areas and lays a zero-area triangle out like any other (no flips).
+  // Thin triangles are kept by all three.
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  Eigen::gridMesh(5, 5, V, F);
+  REQUIRE(F.row(10) == Eigen::RowVector3i(6, 7, 12));  // the first face at vertex 12
+  Eigen::MatrixXd onEdge = V, rounded = V, notFinite = V, thin = V;
+  onEdge.row(12) << 0.375, 0.25, 0;  // on the edge (6, 7)
+  rounded.row(7) << 0.5, 0.3, 0.1;   // on the line through 6 and 7 up to rounding
+  rounded.row(12) = rounded.row(6) + (rounded.row(7) - rounded.row(6)) / 3.0;
+  notFinite(12, 2) = std::numeric_limits<double>::quiet_NaN();
+  thin.row(12) << 0.375, 0.25 + 1e-9, 0;
+  Eigen::TutteEmbedding<> uniform, harmonic;
+  harmonic.setWeights(Eigen::LaplacianWeights::Cotangent);
+  Eigen::BoundaryFirstFlattening<> bff;
+  std::string error;
+  auto refuses = [&](auto& parameterization, const Eigen::MatrixXd& P, const std::vector<std::string>& parts) {
+    CHECK_FALSE(parameterization.compute(P, F, {}, &error));
+    INFO("error: " << error);
+    for (const std::string& part : parts) CHECK(error.find(part) != std::string::npos);
+    CHECK(parameterization.info() == Eigen::InvalidInput);
+    CHECK(parameterization.uv().rows() == 0);
+  };
+  for (const Eigen::MatrixXd* zero : {&onEdge, &rounded})
+  {
+    CAPTURE(zero == &rounded);
+    refuses(harmonic, *zero, {"TutteEmbedding", "face 10 (vertices 6, 7, 12)", "zero area"});
+    refuses(bff, *zero, {"BoundaryFirstFlattening", "face 10 (vertices 6, 7, 12)", "zero area"});
+    REQUIRE_MESSAGE(uniform.compute(*zero, F, {}, &error), error);
+    CHECK(flippedTriangles(uniform.uv(), uniform.cutFaces()) == 0);
+  }
+  refuses(harmonic, notFinite, {"vertex 12", "non-finite"});
+  refuses(bff, notFinite, {"vertex 12", "non-finite"});
+  refuses(uniform, notFinite, {"vertex 12", "non-finite"});
+  REQUIRE_MESSAGE(harmonic.compute(thin, F, {}, &error), error);
+  CHECK(harmonic.uv().allFinite());
+  REQUIRE_MESSAGE(bff.compute(thin, F, {}, &error), error);
+  CHECK(bff.uv().allFinite());
+  CHECK(flippedTriangles(bff.uv(), bff.cutFaces()) == 0);
+  REQUIRE_MESSAGE(uniform.compute(thin, F, {}, &error), error);
+  CHECK(flippedTriangles(uniform.uv(), uniform.cutFaces()) == 0);
+}
+
+TEST_CASE("A seam that cuts nothing is refused and leaves no undo step")
+{
+  // A seam along boundary edges, or one edge between interior vertices, opens nothing: addSeam
+  // says so and keeps the layout, and undo() then takes back the last real cut.
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  bumpyGrid(12, V, F);
+  auto check = [&](auto& parameterization) {
+    std::string error;
+    REQUIRE_MESSAGE(parameterization.compute(V, F, {}, &error), error);
+    const Eigen::MatrixXd uncut = parameterization.uv();
+    // a real cut from the interior vertex (5, 5) to the nearer (left or bottom) side
+    REQUIRE_MESSAGE(parameterization.addSeam(Eigen::seamToBoundary(V, F, 5 * 12 + 5), &error), error);
+    REQUIRE(parameterization.system().undoableSeams() == 1);
+    const Eigen::MatrixXd cut = parameterization.uv();
+    // along the top side, along the right side, one interior edge
+    const std::vector<std::vector<int>> idle = {{11 * 12, 11 * 12 + 1, 11 * 12 + 2, 11 * 12 + 3}, {11, 23},
+                                                {6 * 12 + 8, 6 * 12 + 9}};
+    for (const std::vector<int>& seam : idle)
+    {
+      CAPTURE(seam.front());
+      CHECK_FALSE(parameterization.addSeam(seam, &error));
+      CHECK(error.find("cuts nothing") != std::string::npos);
+      CHECK(parameterization.info() == Eigen::Success);
+      CHECK(parameterization.uv() == cut);
+      CHECK(parameterization.system().undoableSeams() == 1);
+    }
+    REQUIRE_MESSAGE(parameterization.undo(&error), error);
+    CHECK(parameterization.cutVertices().rows() == V.rows());
+    REQUIRE(parameterization.uv().rows() == uncut.rows());
+    CHECK((parameterization.uv() - uncut).cwiseAbs().maxCoeff() < 1e-9);
+    CHECK_FALSE(parameterization.undo());
+  };
+  SUBCASE("Tutte")
+  {
+    Eigen::TutteEmbedding<> tutte;
+    check(tutte);
+  }
+  SUBCASE("BFF")
+  {
+    Eigen::BoundaryFirstFlattening<> bff;
+    check(bff);
+  }
+}

@@ -37,7 +37,9 @@ namespace Eigen {
   *
   * The cut mesh must be a topological disk (MeshTopology::isDisk(): one piece, genus 0, one
   * boundary loop); otherwise compute()/addSeam() fail with a message naming its genus, pieces or
-  * holes. cutToDisk() gives the cuts that make any orientable mesh one.
+  * holes. cutToDisk() gives the cuts that make any orientable mesh one. compute() also refuses a
+  * triangle of zero area (up to rounding) or a vertex with a non-finite coordinate, naming it:
+  * its angles and cotangent weights are undefined.
   *
   * \tparam Ordering_  fill-reducing ordering of the factor (AMDOrdering<int>, MetisOrdering<int>, ...).
   * \sa TutteEmbedding, SeamCutSystem
@@ -63,10 +65,15 @@ public:
   const std::vector<int>& boundaryLoop() const { return this->m_system.boundaryLoop(); }
 
 protected:
-  MatrixXd cornerWeightsFor(const MatrixXd& V, const MatrixXi& F)
+  bool cornerWeightsFor(const MatrixXd& V, const MatrixXi& F, MatrixXd& weights, std::string& problem)
   {
+    if (!internal::meshparameterization::cornerEdgeWeights(V, F, LaplacianWeights::Cotangent, weights, problem))
+    {
+      problem = "BoundaryFirstFlattening: " + problem;
+      return false;
+    }
     m_angles = internal::meshparameterization::cornerAngles(V, F);
-    return internal::meshparameterization::cornerEdgeWeights(V, F, LaplacianWeights::Cotangent);
+    return true;
   }
 
   bool layout(std::string& problem)

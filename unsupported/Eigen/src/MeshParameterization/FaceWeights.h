@@ -37,23 +37,28 @@ inline MatrixXd cornerAngles(const MatrixXd& V, const MatrixXi& F)
   return angles;
 }
 
-/** \internal \returns the #F x 3 weights of the edge opposite each corner, as one triangle's
+/** \internal Sets \a w to the #F x 3 weights of the edge opposite each corner, as one triangle's
   * contribution: cotangent (half the cotangent of the corner's angle, exactly as cotanLaplacian()
-  * computes it; 0 on triangles of zero area) or uniform (1/2). */
-inline MatrixXd cornerEdgeWeights(const MatrixXd& V, const MatrixXi& F, LaplacianWeights weights)
+  * computes it) or uniform (1/2). \returns false, with \a problem naming the first face whose
+  * cotangents are undefined (zero area up to rounding, or a non-finite corner: see
+  * cotanLaplacian(), which skips the former), for cotangent weights; uniform weights read no geometry and always succeed. */
+inline bool cornerEdgeWeights(const MatrixXd& V, const MatrixXi& F, LaplacianWeights weights, MatrixXd& w,
+                              std::string& problem)
 {
-  MatrixXd w = MatrixXd::Constant(F.rows(), 3, 0.5);
-  if (weights == LaplacianWeights::Uniform) return w;
+  w = MatrixXd::Constant(F.rows(), 3, 0.5);
+  if (weights == LaplacianWeights::Uniform) return true;
   for (Index f = 0; f < F.rows(); ++f)
   {
     const Vector3d p[3] = {V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose()};
-    const double doubleArea = (p[1] - p[0]).cross(p[2] - p[0]).norm();
-    for (int c = 0; c < 3; ++c)
-      w(f, c) = doubleArea > 0.0 && std::isfinite(doubleArea)
-                    ? 0.5 * (p[(c + 1) % 3] - p[c]).dot(p[(c + 2) % 3] - p[c]) / doubleArea
-                    : 0.0;
+    double doubleArea = 0;
+    if (internal::meshtools::cotanFace(p, doubleArea) != internal::meshtools::CotanFace::Defined)
+    {
+      problem = internal::meshtools::cotanFaceProblem(V, F, f);
+      return false;
+    }
+    for (int c = 0; c < 3; ++c) w(f, c) = 0.5 * (p[(c + 1) % 3] - p[c]).dot(p[(c + 2) % 3] - p[c]) / doubleArea;
   }
-  return w;
+  return true;
 }
 
 /** \internal Calls \a visit(f, a, b, w) for every triangle f and each of its edges (a, b), with w

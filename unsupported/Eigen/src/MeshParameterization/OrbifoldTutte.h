@@ -102,7 +102,8 @@ public:
     * Assembles the cotan Laplacian of the closed mesh once. \returns false (see error()) on bad
     * input: F not a #F x 3 index matrix into V, a mesh that is not a closed, consistently oriented
     * surface of genus 0 in one piece (one fan of triangles around each vertex), a vertex on no
-    * triangle, wrong cone count, repeated or out-of-range cones. Faces
+    * triangle, a triangle of zero area up to rounding or a non-finite coordinate (no cotan
+    * weights, see cotanLaplacian()), wrong cone count, repeated or out-of-range cones. Faces
     * counter-clockwise seen from outside give a counter-clockwise (positively oriented) layout. */
   bool setup(const MatrixXd& V, const MatrixXi& F, const std::vector<int>& cones, OrbifoldType type)
   {
@@ -122,11 +123,19 @@ public:
         if (!used[std::size_t(v)])
           return fail("vertex " + std::to_string(v) + " is on no triangle (remove unused vertices first)");
     }
+    for (Index f = 0; f < F.rows(); ++f) {  // (cotanLaplacian() would skip a zero-area triangle)
+      const Vector3d p[3] = {V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose()};
+      double doubleArea = 0;
+      if (internal::meshtools::cotanFace(p, doubleArea) != internal::meshtools::CotanFace::Defined)
+        return fail(internal::meshtools::cotanFaceProblem(V, F, f));
+    }
+    MatrixType L0 = cotanLaplacian<double, int>(V, F, &why);
+    if (!why.empty()) return fail(why);
     m_V = V;
     m_F = F;
     m_cones = cones;
     m_type = type;
-    m_L0 = cotanLaplacian<double, int>(V, F);
+    m_L0.swap(L0);
     m_rho = m_L0.diagonal().mean();
     if (!(m_rho > 0)) return fail("the mesh has no triangle of positive area");
     m_isSetup = true;

@@ -57,7 +57,13 @@ public:
     else if (F.cols() != 3 || F.rows() < 1) problem = "F must be #F x 3 with at least one triangle";
     else if (F.minCoeff() < 0 || F.maxCoeff() >= V.rows()) problem = "face index out of range";
     else if (cornerWeights.rows() != F.rows() || cornerWeights.cols() != 3) problem = "corner weights must be #F x 3";
-    else if (!V.allFinite() || !cornerWeights.allFinite()) problem = "coordinates and weights must be finite";
+    else if (!V.allFinite())
+    {
+      Index v = 0;
+      while (V.row(v).allFinite()) ++v;
+      problem = "vertex " + std::to_string(v) + " has a non-finite coordinate";
+    }
+    else if (!cornerWeights.allFinite()) problem = "the corner weights must be finite";
     else if (!(shift >= 0)) problem = "the shift must be >= 0";
     if (!problem.empty()) return fail(problem, error);
 
@@ -92,7 +98,9 @@ public:
     * an edge) and removes the seam's new boundary vertices from the factor in place.
     * \returns false with a message (nothing changed) when the path is not an edge path, leaves a
     * copied vertex off the boundary loop (it does not start on the boundary, or it reaches the
-    * boundary again and splits the mesh), or the update fails. */
+    * boundary again and splits the mesh), cuts nothing open (it runs along boundary edges only, or
+    * is a single edge between inner vertices; then no undo step is recorded either), or the update
+    * fails. */
   bool addSeam(const std::vector<int>& path, std::string* error = nullptr)
   {
     if (!m_isValid) return fail("compute() first", error, false);
@@ -135,6 +143,10 @@ public:
     VectorXi localOrigin;
     if (!cutMeshAlongPath(m_cutVertices, m_cutFaces, path, cutV, cutF, localOrigin, &problem))
       return fail(problem, error, false);
+    if (cutV.rows() == m_cutVertices.rows())  // no vertex split: the same faces, nothing to undo
+      return fail("the seam cuts nothing open (its edges are boundary edges already, or it is a single edge "
+                  "between inner vertices): nothing changed and no undo step was recorded",
+                  error, false);
     m_cutVertices.swap(cutV);
     m_cutFaces.swap(cutF);
     VectorXi composed(localOrigin.size());

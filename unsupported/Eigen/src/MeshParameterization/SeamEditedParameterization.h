@@ -12,8 +12,9 @@ namespace internal {
 namespace meshparameterization {
 
 /** \internal CRTP base: Derived provides
-  * - `MatrixXd cornerWeightsFor(const MatrixXd& V, const MatrixXi& F) const` (the Laplacian's
-  *   per-corner weights, see LaplacianWeights), and
+  * - `bool cornerWeightsFor(const MatrixXd& V, const MatrixXi& F, MatrixXd& weights, std::string& problem)`
+  *   (the Laplacian's per-corner weights, see LaplacianWeights; false with a message naming the
+  *   first face where they are undefined), and
   * - `bool layout(std::string& problem)`, which fills m_uv from m_system (called after every
   *   change of the cut mesh). */
 template <typename Derived, typename Ordering_>
@@ -26,7 +27,9 @@ public:
   /** Factors the Laplacian of (\a V, \a F), removes its boundary loop from the factor, cuts
     * along \a initialSeam if given (needed for a closed mesh: a simple path cuts a sphere to a
     * disk; this cut cannot be undone) and computes the parameterization.
-    * \returns false with a message in \a error (and info() != Success) on failure. */
+    * \returns false with a message in \a error (and info() != Success) on failure, among others
+    * on a vertex with a non-finite coordinate (named in the message) and, where the weights are
+    * cotangents, on a triangle of zero area up to rounding (named too; thin ones are kept). */
   bool compute(const MatrixXd& V, const MatrixXi& F, const std::vector<int>& initialSeam = {},
                std::string* error = nullptr)
   {
@@ -35,7 +38,9 @@ public:
     std::string problem;
     if (V.cols() != 3 || F.cols() != 3 || F.rows() == 0 || F.minCoeff() < 0 || F.maxCoeff() >= V.rows())
       return fail("V must be #V x 3 and F #F x 3 with indices into V", error);
-    if (!m_system.compute(V, F, derived().cornerWeightsFor(V, F), m_shift, &problem)) return fail(problem, error);
+    MatrixXd weights;
+    if (!derived().cornerWeightsFor(V, F, weights, problem)) return fail(problem, error);
+    if (!m_system.compute(V, F, weights, m_shift, &problem)) return fail(problem, error);
     if (!initialSeam.empty() && !m_system.addSeam(initialSeam, &problem)) return fail(problem, error);
     m_system.clearHistory();
     if (m_system.boundaryLoop().size() < 3)
@@ -46,7 +51,9 @@ public:
   /** Cuts the mesh along \a path (vertex indices of the current cut mesh, cutVertices(); it must
     * start on the boundary and go inside without reaching the boundary again), updates the factor
     * in place (removeDofs of the seam) and lays the cut mesh out again.
-    * \returns false with a message (and nothing changed) on a bad path. */
+    * \returns false with a message (and nothing changed) on a bad path, and on a path that cuts
+    * nothing open (along boundary edges only, or a single edge between inner vertices): such a call
+    * records no undo step, so the next undo() takes back the last seam that did cut. */
   bool addSeam(const std::vector<int>& path, std::string* error = nullptr)
   {
     std::string problem;

@@ -29,7 +29,9 @@ enum class BoundarySpacing
   * (convex) polygon of the boundary (Tutte's theorem); cotangent weights can flip triangles where
   * they are negative. Other boundary loops (holes) stay free. The cut mesh must be one piece of
   * genus 0 (MeshTopology); a mesh with handles fails with a message naming its genus (cut it with
-  * cutToDisk() first).
+  * cutToDisk() first). Cotangent weights also need every triangle to have a nonzero area (beyond
+  * rounding): compute() refuses a mesh with a zero-area triangle and names it; uniform weights take
+  * such a mesh. A non-finite vertex coordinate is refused with either weights.
   *
   * \code
   * Eigen::TutteEmbedding<> tutte;
@@ -92,9 +94,11 @@ public:
   }
 
 protected:
-  MatrixXd cornerWeightsFor(const MatrixXd& V, const MatrixXi& F) const
+  bool cornerWeightsFor(const MatrixXd& V, const MatrixXi& F, MatrixXd& weights, std::string& problem) const
   {
-    return internal::meshparameterization::cornerEdgeWeights(V, F, m_weights);
+    if (internal::meshparameterization::cornerEdgeWeights(V, F, m_weights, weights, problem)) return true;
+    problem = "TutteEmbedding with cotangent weights: " + problem;
+    return false;
   }
 
   bool layout(std::string& problem)

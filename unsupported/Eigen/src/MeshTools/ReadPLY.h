@@ -1,9 +1,10 @@
 // ReadPLY: reads the triangles of a PLY file (Stanford polygon format: ascii, binary_little_endian
 // or binary_big_endian), plain or gzip-compressed (zlib reads both). Vertex x, y, z of any
 // property type, the face index list of any count/index type, polygons fan-triangulated, other
-// properties and elements skipped. Malformed input makes it return false with a message naming the
-// file and the line (ascii, header) or byte offset (binary body); it never aborts, and header
-// counts are never trusted for large allocations.
+// properties and elements skipped. Malformed input (an ascii value its declared type cannot hold
+// included) makes it return false with a message naming the file and the line (ascii, header) or
+// byte offset (binary body); it never aborts, and header counts are never trusted for large
+// allocations.
 
 #ifndef EIGEN_MESHTOOLS_READPLY_H
 #define EIGEN_MESHTOOLS_READPLY_H
@@ -16,15 +17,49 @@ namespace meshtools {
 /** \internal The scalar types of PLY properties. */
 enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64, Invalid };
 
-/** \internal \returns the type named \a name (both the classic and the sized spellings), or Invalid. */
-inline PlyType plyTypeFromName(const std::string& name)
+/** \internal \returns the classic name of \a type ("uchar", "int", "float", ...), or with \a sized
+  * its sized name ("uint8", "int32", "float32", ...). */
+inline const char* plyTypeName(PlyType type, bool sized = false)
 {
   static const char* const names[][2] = {{"char", "int8"},   {"uchar", "uint8"}, {"short", "int16"},
                                          {"ushort", "uint16"}, {"int", "int32"},   {"uint", "uint32"},
                                          {"float", "float32"}, {"double", "float64"}};
+  return type == PlyType::Invalid ? "?" : names[int(type)][sized ? 1 : 0];
+}
+
+/** \internal \returns the type named \a name (both the classic and the sized spellings), or Invalid. */
+inline PlyType plyTypeFromName(const std::string& name)
+{
   for (int t = 0; t < 8; ++t)
-    if (name == names[t][0] || name == names[t][1]) return PlyType(t);
+    if (name == plyTypeName(PlyType(t)) || name == plyTypeName(PlyType(t), true)) return PlyType(t);
   return PlyType::Invalid;
+}
+
+/** \internal The smallest and largest value of each integer PLY type (char ... uint). */
+inline double plyIntegerLimit(PlyType type, bool highest)
+{
+  static const double limits[][2] = {{-128.0, 127.0}, {0.0, 255.0}, {-32768.0, 32767.0},
+                                     {0.0, 65535.0}, {-2147483648.0, 2147483647.0}, {0.0, 4294967295.0}};
+  return limits[int(type)][highest ? 1 : 0];
+}
+
+/** \internal \returns whether a binary value of type \a type can hold \a value (read from ascii):
+  * an integer in the type's range for the integer types; for float, a value that does not round
+  * to infinity (NaN and infinities themselves fit both floating-point types). */
+inline bool plyValueFits(PlyType type, double value)
+{
+  if (type == PlyType::Float64) return true;
+  if (type == PlyType::Float32) // from 2^128 - 2^103 on, a double rounds to float's infinity
+    return !std::isfinite(value) || std::abs(value) < std::ldexp(2.0 - std::ldexp(1.0, -24), 127);
+  return value == std::floor(value) && value >= plyIntegerLimit(type, false) && value <= plyIntegerLimit(type, true);
+}
+
+/** \internal \returns what a value of the integer or float type \a type may be, for messages. */
+inline std::string plyTypeRange(PlyType type)
+{
+  if (type == PlyType::Float32) return "magnitudes up to 3.4028235e38";
+  return "an integer in [" + std::to_string((long long)plyIntegerLimit(type, false)) + ", " +
+         std::to_string((long long)plyIntegerLimit(type, true)) + "]";
 }
 
 /** \internal \returns the size in bytes of a binary value of type \a type. */
@@ -86,7 +121,9 @@ public:
   }
 
   /** Reads the next value as a double. \returns false at the end of the data, on a read error or
-    * (ascii) on a token that is not a number; problem() then says which. */
+    * (ascii) on a token that is not a number or that a value of \a type cannot hold (a fraction or
+    * an out-of-range number for an integer type, a number beyond float's range for float; binary
+    * values are of the type by construction); problem() then says which. */
   bool next(PlyType type, double& value)
   {
     if (!m_ascii)
@@ -104,11 +141,19 @@ public:
     }
     const char* tokenBegin = m_position;
     while (std::isspace(static_cast<unsigned char>(*tokenBegin))) ++tokenBegin;
-    if (!offParseDouble(m_position, value))
-    {
+    auto token = [tokenBegin]() {
       const char* tokenEnd = tokenBegin;
       while (*tokenEnd && !std::isspace(static_cast<unsigned char>(*tokenEnd))) ++tokenEnd;
-      m_problem = "'" + std::string(tokenBegin, tokenEnd).substr(0, 32) + "' is not a number";
+      return "'" + std::string(tokenBegin, tokenEnd).substr(0, 32) + "'";
+    };
+    if (!offParseDouble(m_position, value))
+    {
+      m_problem = token() + " is not a number";
+      return false;
+    }
+    if (!plyValueFits(type, value))
+    {
+      m_problem = token() + " does not fit the declared type " + plyTypeName(type) + " (" + plyTypeRange(type) + ")";
       return false;
     }
     return true;
@@ -182,7 +227,9 @@ inline std::vector<std::string> plySplitWords(const std::string& line)
   *               or the byte offset (binary body) when reading fails, and is cleared on success.
   * \returns true on success. On failure (bad header, truncated body, index out of range or not an
   *          integer, non-finite coordinate, face with fewer than 3 corners, count that does not
-  *          fit) \a V and \a F are left unchanged.
+  *          fit, an ascii value that its declared type cannot hold: a fraction or a number out of
+  *          range for an integer type, a number beyond float's range for float) \a V and \a F
+  *          are left unchanged.
   *
   * \sa readMesh(), writeMesh(), readOFF(), readOBJ()
   */
