@@ -3,7 +3,7 @@
 // Floyd-Warshall on small grids), cutMesh / cutMeshAlongPath (vertex copies, Euler
 // characteristic, face correspondence through origin, boundary edges, disks from trees),
 // meshTopology (counts against independent ones on disks, spheres, tori, holes, pieces),
-// cutToDisk (the cut meshes are disks, no dangling cuts), massMatrix (total area, positive diagonal, hand-computed triangles)
+// cutToDisk (the cut meshes are disks, no dangling cuts), massMatrix (total area, positive diagonal, hand-computed triangles, non-finite corners refused)
 // and the triangles cotanLaplacian skips (zero area), refuses (non-finite corners) or keeps (thin ones).
 #include <doctest/doctest.h>
 
@@ -599,11 +599,23 @@ TEST_CASE("massMatrix: hand-computed triangles, total area, positive diagonal") 
   CHECK(obtuseCount > 10); // the obtuse branch was exercised
   CHECK(S.rows() > 0);
 
-  // An unused vertex gets zero mass.
+  // An unused vertex gets zero mass, even at a non-finite position (it is not read).
   V.conservativeResize(V.rows() + 1, 3);
-  V.row(V.rows() - 1).setZero();
-  M = Eigen::massMatrix(V, F);
+  V.row(V.rows() - 1).setConstant(std::numeric_limits<double>::quiet_NaN());
+  std::string error = "untouched";
+  M = Eigen::massMatrix(V, F, &error);
+  CHECK(error.empty());
   CHECK(M.coeff(V.rows() - 1, V.rows() - 1) == 0.0);
+  // A used vertex at a non-finite position: refused, naming the face and the vertex.
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    MatrixXd P = V;
+    P(F(3, 1), 2) = bad;
+    CHECK(Eigen::massMatrix(P, F, &error).rows() == 0);
+    CHECK(Eigen::massMatrix(P, F).rows() == 0);
+    INFO("error: " << error);
+    CHECK(error.find("massMatrix: face ") != std::string::npos);
+    CHECK(error.find("vertex " + std::to_string(F(3, 1)) + " has a non-finite coordinate") != std::string::npos);
+  }
 }
 
 TEST_CASE("meshTopology: disk, sphere, torus, holes, pieces, against independent counts") {

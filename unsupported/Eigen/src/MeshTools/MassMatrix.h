@@ -17,15 +17,20 @@ namespace Eigen {
   * other two A/4 (Meyer et al. 2002). The shares of a triangle add up to A, so the diagonal sums
   * to the total area of the mesh, and every share is positive for a triangle of positive area:
   * the diagonal is positive for every vertex used by a non-degenerate triangle. Triangles of zero
-  * area contribute nothing; vertices used by no triangle get a zero diagonal entry.
+  * area contribute nothing; vertices used by no triangle get a zero diagonal entry. A triangle
+  * with a non-finite corner coordinate has no area: such a mesh is refused (an empty 0 x 0 result,
+  * and \a error names the face and the vertex), as by cotanLaplacian().
   *
-  * \param V  #V x 3 (or #V x 2, planar) vertex positions.
-  * \param F  #F x 3 triangles, 0-based indices into the rows of V (checked by eigen_assert).
-  * \returns the #V x #V diagonal mass matrix (compressed; every diagonal entry stored).
+  * \param V      #V x 3 (or #V x 2, planar) vertex positions.
+  * \param F      #F x 3 triangles, 0-based indices into the rows of V (checked by eigen_assert).
+  * \param error  if not null, receives a message naming the first triangle with a non-finite
+  *               corner when the mesh is refused, and is cleared otherwise.
+  * \returns the #V x #V diagonal mass matrix (compressed; every diagonal entry stored); 0 x 0
+  *          for a refused mesh.
   *
   * \sa cotanLaplacian()
   */
-inline SparseMatrix<double> massMatrix(const MatrixXd& V, const MatrixXi& F)
+inline SparseMatrix<double> massMatrix(const MatrixXd& V, const MatrixXi& F, std::string* error = nullptr)
 {
   eigen_assert((V.cols() == 2 || V.cols() == 3) && "massMatrix: V must have 2 or 3 columns");
   eigen_assert(internal::meshtools::checkTriangles(F, V.rows(), "massMatrix", nullptr) &&
@@ -42,6 +47,11 @@ inline SparseMatrix<double> massMatrix(const MatrixXd& V, const MatrixXi& F)
   {
     const int corner[3] = {F(f, 0), F(f, 1), F(f, 2)};
     const Vector3d p[3] = {position(corner[0]), position(corner[1]), position(corner[2])};
+    if (!p[0].allFinite() || !p[1].allFinite() || !p[2].allFinite())
+    {
+      if (error) *error = "massMatrix: " + internal::meshtools::cotanFaceProblem(V, F, f);
+      return SparseMatrix<double>();
+    }
     const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
     if (!(area > 0.0)) continue;
     // Squared length of the side opposite each corner, and the corner's cotangent:
@@ -70,6 +80,7 @@ inline SparseMatrix<double> massMatrix(const MatrixXd& V, const MatrixXi& F)
   M.reserve(VectorXi::Ones(n));
   for (Index i = 0; i < n; ++i) M.insert(i, i) = mass[i];
   M.makeCompressed();
+  if (error) error->clear();
   return M;
 }
 
