@@ -210,13 +210,9 @@ bool ArapDeformation<Ordering_>::compute(const MatrixXd& V, const MatrixXi& F)
                                       std::to_string(F(f, c)) + ", out of range [0, " + std::to_string(V.rows()) +
                                       ")");
 
-  std::string problem;
-  SparseMatrixType laplacian = cotanLaplacian<double, int>(V, F, &problem);
-  if (!problem.empty()) return fail(InvalidInput, "ArapDeformation::compute: " + problem);
-
   const Index n = V.rows();
   m_rest = V;
-  m_laplacian.swap(laplacian);
+  m_laplacian = cotanLaplacian<double, int>(V, F);  // (V is finite: nothing refused; zero-area triangles left out)
   m_componentCount = internal::mesh_deformation::weightedComponents(m_laplacian, m_component);
 
   // L is singular (constants in its kernel): factor L + eps I so that the factor exists before

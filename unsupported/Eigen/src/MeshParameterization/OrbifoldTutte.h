@@ -123,21 +123,17 @@ public:
         if (!used[std::size_t(v)])
           return fail("vertex " + std::to_string(v) + " is on no triangle (remove unused vertices first)");
     }
-    for (Index f = 0; f < F.rows(); ++f) {  // (cotanLaplacian() would skip a zero-area triangle)
-      const Vector3d p[3] = {V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose()};
-      double doubleArea = 0;
-      if (internal::meshtools::cotanFace(p, doubleArea) != internal::meshtools::CotanFace::Defined)
-        return fail(internal::meshtools::cotanFaceProblem(V, F, f));
+    {  // every triangle needs its cotangent weights (cotanLaplacian() would leave a zero-area one out)
+      MatrixXd weights;
+      if (!internal::meshparameterization::cornerEdgeWeights(V, F, LaplacianWeights::Cotangent, weights, why))
+        return fail(why);
     }
-    MatrixType L0 = cotanLaplacian<double, int>(V, F, &why);
-    if (!why.empty()) return fail(why);
     m_V = V;
     m_F = F;
     m_cones = cones;
     m_type = type;
-    m_L0.swap(L0);
-    m_rho = m_L0.diagonal().mean();
-    if (!(m_rho > 0)) return fail("the mesh has no triangle of positive area");
+    m_L0 = cotanLaplacian<double, int>(V, F);
+    m_rho = m_L0.diagonal().mean();  // (> 0: every triangle has a positive area)
     m_isSetup = true;
     m_info = Success;
     m_error.clear();
