@@ -25,7 +25,7 @@ enum class UpdateRoute {
   LowRank,                 ///< removeDofs: fold L(I,B) into L(I,I) along the paths of B; insertDofs/mergeDofs: as Mixed
   Refactorization,         ///< recompute every supernode
   Mixed                    ///< removeDofs: low-rank below, partial refactorization of the top; insertDofs/mergeDofs:
-                           ///< partial refactorization below, signed low-rank folds on top (LowRankTopUpdate.h)
+                           ///< each dirty supernode refactored or updated by signed low-rank folds (LowRankTopUpdate.h)
 };
 
 /** \ingroup UpdatableCholesky_Module
@@ -57,6 +57,13 @@ struct UpdateWorkspace {
   std::vector<Index> rankColumns, likelyRankColumns, rowRank;  ///< insertions' plan: per dirty supernode (zero between calls)
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carried;   ///< W passed to the parent
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carriedNegative;  ///< downdate part passed up (insertions)
+  /** insertions' plan: per dirty supernode, the rank its own input change adds (two per changed
+    * or new column) and the first of those columns (its position in the supernode); zero between calls */
+  std::vector<Index> ownRank, ownStart;
+  /** insertions: per folded supernode, its own input change split as P P^H − N N^H (rows: the
+    * supernode's rows), and where each column of P (and of N) starts to be non-zero */
+  std::vector<Matrix<Scalar, Dynamic, Dynamic> > ownPositive, ownNegative;
+  std::vector<std::vector<Index> > ownPositiveStart, ownNegativeStart;
   void resize(Index supernodes) {
     mark.assign(supernodes, 0);
     rank.assign(supernodes, 0);
@@ -68,6 +75,16 @@ struct UpdateWorkspace {
     rankColumns.assign(supernodes, 0);
     likelyRankColumns.assign(supernodes, 0);
     rowRank.assign(supernodes, 0);
+    ownRank.assign(supernodes, 0);
+    ownStart.assign(supernodes, 0);
+    ownPositive.clear();
+    ownPositive.resize(supernodes);
+    ownNegative.clear();
+    ownNegative.resize(supernodes);
+    ownPositiveStart.clear();
+    ownPositiveStart.resize(supernodes);
+    ownNegativeStart.clear();
+    ownNegativeStart.resize(supernodes);
     carried.clear();
     carried.resize(supernodes);
     carriedNegative.clear();

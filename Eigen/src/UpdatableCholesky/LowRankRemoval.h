@@ -176,23 +176,25 @@ typename NumTraits<Scalar>::Real makeRotation(typename NumTraits<Scalar>::Real l
 
 /** \internal Applies to the supernode's kept columns from \a start on, column by column, a
   * rotation with each of the W columns [first, first+count) that is non-zero on the column's
-  * diagonal row: Givens rotations (an update, L L^H + W W^H) or with \a Hyperbolic hyperbolic
-  * ones (a downdate, L L^H − W W^H); see makeRotation(). The rotations and their order on every
+  * diagonal row: Givens rotations (an update, L L^H + w w^H) with the columns below
+  * \a hyperbolicFrom, hyperbolic ones (a downdate, L L^H − w w^H) with the others, in that order
+  * on each column (see makeRotation()): one sweep folds a signed change, the update first, so
+  * that no pivot of the sweep falls below its final value. The rotations and their order on every
   * row are those of the plain loop over columns and W columns, but they are applied in panels
   * of RotationPanelColumns columns: a panel's rotations are made on its own rows, then applied
   * to the rows below one block of RotationRowBlock rows at a time, so that the block's rows of
-  * the panel and of W stay in cache while all the panel's rotations pass over them (W is read
-  * once per panel, not once per column). \returns false on a lost pivot (the block is then
-  * partly changed); \a flops gets the work. */
-template <bool Hyperbolic, typename Scalar, typename StorageIndex, typename Dense>
-bool rotationSweep(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count, Index start,
-                   const char* removed, double& flops) {
+  * the panel and of W stay in cache while all the panel's rotations pass over them (W and the
+  * block are read once per panel, not once per column and sign). \returns false on a lost pivot
+  * (the block is then partly changed); \a flops gets the work. */
+template <typename Scalar, typename StorageIndex, typename Dense>
+bool signedRotationSweep(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count,
+                         Index hyperbolicFrom, Index start, const char* removed, double& flops) {
   typedef typename NumTraits<Scalar>::Real RealScalar;
   const Index nr = node.nrows(), nc = node.ncols;
   Scalar* L = node.values.data();
   Scalar* Wd = W.data();
-  auto rotate = [](Index n, Scalar* l, Scalar* w, const ColumnRotation<Scalar>& g) {
-    if (Hyperbolic)
+  auto rotate = [hyperbolicFrom](Index n, Scalar* l, Scalar* w, const ColumnRotation<Scalar>& g) {
+    if (g.t >= hyperbolicFrom)
       rotateColumnsHyperbolic(n, l, w, g.cosine, g.invCos, g.sine, g.conjSine);
     else
       rotateColumns(n, l, w, g.cosine, g.invCos, g.sine, g.conjSine);
@@ -210,7 +212,8 @@ bool rotationSweep(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first,
         ColumnRotation<Scalar> rotation;
         rotation.j = j;
         rotation.t = t;
-        const RealScalar r = makeRotation<Hyperbolic>(numext::real(lj[j]), w[j], rotation);
+        const RealScalar r = t >= hyperbolicFrom ? makeRotation<true>(numext::real(lj[j]), w[j], rotation)
+                                                 : makeRotation<false>(numext::real(lj[j]), w[j], rotation);
         if (!(r > RealScalar(0)) || !(r < NumTraits<RealScalar>::highest())) return false;
         lj[j] = Scalar(r);
         w[j] = Scalar(0);
@@ -226,6 +229,14 @@ bool rotationSweep(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first,
     }
   }
   return true;
+}
+
+/** \internal signedRotationSweep() with one sign: Givens rotations (an update), or with
+  * \a Hyperbolic hyperbolic ones (a downdate). */
+template <bool Hyperbolic, typename Scalar, typename StorageIndex, typename Dense>
+bool rotationSweep(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count, Index start,
+                   const char* removed, double& flops) {
+  return signedRotationSweep(node, W, first, count, Hyperbolic ? first : first + count, start, removed, flops);
 }
 
 /** \internal Fold by Givens rotations of the W columns [first, first+count), zero above row

@@ -1,31 +1,38 @@
-// LowRankTopUpdate.h — after a cut or a merge, dirty supernodes whose own columns did not change
-// are updated by signed low-rank folds instead of being refactored (insertDofs/mergeDofs, paper
-// §4.2 / Algorithm 4, with Davis & Hager's up- and downdates on the supernodal factor, DESIGN §3).
+// LowRankTopUpdate.h — after a cut or a merge, dirty supernodes are updated by signed low-rank
+// folds instead of being refactored where that is cheaper (insertDofs/mergeDofs, paper §4.2 /
+// Algorithm 4, with Davis & Hager's up- and downdates on the supernodal factor, DESIGN §3).
 //
 // A structural change makes the supernodes on the paths from the changed columns to the roots
-// dirty. Those that gain columns (copies of their own dofs) or whose input changed are
-// refactored (Algorithm 4). The others keep their columns and input: their values change only
-// through the update matrices their children pass up. Such a supernode may have gained copy
-// rows below; the previous factor extended with identity for the copies has zero rows there, so
-// its previous block and update matrix are kept with zero rows and columns inserted (the
-// extension of the previous matrix by identity placeholders, as in the paper's rowadd setup).
-// The change of a child's update matrix, U' − U = L21' L21'^H − L21 L21^H, has a small rank:
-// written in the variables (last copy, differences to it), a cut that glues back to the uncut
-// matrix only adds one row and column per copy (a row addition, Davis & Hager), so U' − U has
-// rank at most the copies below, plus two per copy row of the child (the unit transform that
-// moves a copy row back onto its origin); a merge removes them again. Each dof where the cut
-// does not glue back adds one (gluingMismatches()). The change is split into P P^H − N N^H (a
-// range sampled with the likely rank, again with the bound if that misses, and an
-// eigendecomposition of the small core; eigenvalues at rounding level are dropped) and folded:
-// first the update P (Givens rotations or blocked LQ, as for removals), then the downdate N
-// (blocked hyperbolic reflections, BlockedDowndate.h, or hyperbolic rotations for small ranks),
-// along the paths to the roots. The cached update
-// matrices of the folded supernodes get the matching ± corrections, deferred. Each folded
-// supernode costs ~4 · rank · rows · columns instead of its refactorization and its children's
-// extend-adds. The folded supernodes need not be closed under parents: a cut through the root
-// separator refactors the root but still folds the separators below it, whose deferred
-// corrections the root's refactorization applies. Which supernodes are refactored and which
-// are folded is chosen per update by a dynamic program over the dirty tree on flop estimates.
+// dirty. Each is refactored (Algorithm 4) or folded. A folded one starts from its previous block,
+// extended to its new rows and columns as the factor of the previous matrix extended with a
+// diagonal placeholder per copy (zero rows for the copies; a copy's column is its placeholder,
+// the square root of its new diagonal entry), and its previous update matrix, extended with zero
+// rows and columns (as in the paper's rowadd setup). Its values then change through:
+//  - its own input (insertions): a column that gained copies or changed values brings the change
+//    e_j d^H + d e_j^H (d: new minus previous entries of column j on the supernode's rows, the
+//    diagonal halved), split as u u^H − v v^H with u, v = (a e_j ± d / a) / sqrt(2), a² = |d|,
+//    zero above the column's own row (a merge folds only supernodes that keep their columns and
+//    input);
+//  - the update matrices its children pass up. The change of a refactored child's update matrix,
+//    U' − U = L21' L21'^H − L21 L21^H, has a small rank: written in the variables (last copy,
+//    differences to it), a cut that glues back to the uncut matrix only adds one row and column
+//    per copy (a row addition, Davis & Hager), so U' − U has rank at most the copies below, plus
+//    two per copy row of the child (the unit transform that moves a copy row back onto its
+//    origin); a merge removes them again. Each dof where the cut does not glue back adds one
+//    (gluingMismatches()). The change is split into P P^H − N N^H (a range sampled with the
+//    likely rank, again with the bound if that misses, and an eigendecomposition of the small
+//    core; eigenvalues at rounding level are dropped). A folded child passes what its fold left.
+// The fold is the update P (Givens rotations or blocked LQ, as for removals), then the downdate N
+// (blocked hyperbolic reflections, BlockedDowndate.h, or hyperbolic rotations for small ranks;
+// small ranks of both signs: one sweep, Givens then hyperbolic rotations on each column). What it
+// leaves on the rows below is compressed to the numerical rank of P P^H − N N^H (the pairs u, v
+// of the own changes largely cancel there), passed up, and given to the cached update matrix as
+// a deferred ± correction. Each folded supernode costs ~4 · rank · rows · columns instead of its
+// refactorization and its children's extend-adds. The folded supernodes need not be closed under
+// parents: a cut through the root separator may refactor the root but still fold the separators
+// below it, whose deferred corrections the root's refactorization applies. Which supernodes are
+// refactored and which are folded is chosen per update by a dynamic program over the dirty tree
+// on flop estimates.
 //
 // In exact arithmetic no pivot of the downdate can vanish when the new matrix is positive
 // definite (each intermediate matrix dominates the final one). A pivot that does is reported,
@@ -69,6 +76,35 @@ struct FoldBoundary {
 inline double updateChangeFlops(double m, double rank) {
   const double k = (std::min)(m, rank + double(UpdateChangeOversampling));
   return 2 * k >= m ? 9.0 * m * m * m : 8.0 * m * m * k + 9.0 * k * k * k;
+}
+
+/** \internal Flops of compressSignedChange() on m rows and k columns (a fold that leaves both
+  * an update and a downdate on its rows below; at least two columns). */
+inline double signedCompressionFlops(double m, double k) {
+  if (m <= 0 || k < 2) return 0.0;
+  const double r = (std::min)(m, k);
+  return 4.0 * m * k * k + 9.0 * r * r * r;
+}
+
+/** \internal The signed square-root factors of a small Hermitian \a core = V Λ V^H: \a Vp holds
+  * sqrt(λ) v for its eigenvalues λ above \a dropped, \a Vn sqrt(−λ) v for those below −dropped
+  * (the others, at rounding level, are dropped), so that core ≈ Vp Vp^H − Vn Vn^H. */
+template <typename Dense>
+void signedSquareRoots(const Dense& core, typename NumTraits<typename Dense::Scalar>::Real dropped, Dense& Vp,
+                       Dense& Vn) {
+  SelfAdjointEigenSolver<Dense> eig(core);
+  const auto& lambda = eig.eigenvalues();
+  Index positive = 0, negative = 0;
+  for (Index i = 0; i < lambda.size(); ++i) {
+    positive += lambda[i] > dropped;
+    negative += lambda[i] < -dropped;
+  }
+  Vp.resize(core.rows(), positive);
+  Vn.resize(core.rows(), negative);
+  for (Index i = 0, p = 0, q = 0; i < lambda.size(); ++i) {
+    if (lambda[i] > dropped) Vp.col(p++) = eig.eigenvectors().col(i) * numext::sqrt(lambda[i]);
+    if (lambda[i] < -dropped) Vn.col(q++) = eig.eigenvectors().col(i) * numext::sqrt(-lambda[i]);
+  }
 }
 
 /** \internal Splits the change D = U' − U of a cached update matrix (m × m, lower triangles,
@@ -126,18 +162,8 @@ bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index l
     if (k == kMax) return false;
     k = kMax;  // the likely rank was too low: sample up to the bound
   }
-  SelfAdjointEigenSolver<Dense> eig(B);
-  const auto& lambda = eig.eigenvalues();
-  Index positive = 0, negative = 0;
-  for (Index i = 0; i < lambda.size(); ++i) {
-    positive += lambda[i] > dropped;
-    negative += lambda[i] < -dropped;
-  }
-  Dense Vp(B.rows(), positive), Vn(B.rows(), negative);
-  for (Index i = 0, p = 0, q = 0; i < lambda.size(); ++i) {
-    if (lambda[i] > dropped) Vp.col(p++) = eig.eigenvectors().col(i) * numext::sqrt(lambda[i]);
-    if (lambda[i] < -dropped) Vn.col(q++) = eig.eigenvectors().col(i) * numext::sqrt(-lambda[i]);
-  }
+  Dense Vp, Vn;
+  signedSquareRoots(B, dropped, Vp, Vn);
   if (Q.size() > 0) {
     P.noalias() = Q * Vp;
     N.noalias() = Q * Vn;
@@ -197,8 +223,11 @@ double foldPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vect
     split[k] = SplitFlopWeight * updateChangeFlops(m, likelyBoundary[k]);
     rankOut[k] = likelyBoundary[k];
     if (eligible[s]) {
-      fold[k] = FoldFlopWeight * foldFlops(rankIn[k], nr, nc, double(start[k])) + underFold[k];
-      rankOut[k] = (std::min)(m, rankIn[k]);
+      const double own = double(ws.ownRank[s]);
+      fold[k] = FoldFlopWeight * (foldFlops(rankIn[k], nr, nc, double(start[k])) +
+                                  foldFlops(own, nr, nc, double(ws.ownStart[s]))) +
+                signedCompressionFlops(m, rankIn[k] + own) + underFold[k];
+      rankOut[k] = (std::min)(m, rankIn[k] + own);
     }
     apply[k] = m * m * rankOut[k];  // the deferred correction, applied by a refactored parent
     const Index p = f.parent[s];
@@ -235,7 +264,10 @@ double foldPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vect
     if (inTop[k]) {
       top.push_back(s);
       folded[s] = 1;
-      total += FoldFlopWeight * foldFlops(rankIn[k], double(node.nrows()), double(node.ncols), double(start[k]));
+      total += FoldFlopWeight * (foldFlops(rankIn[k], double(node.nrows()), double(node.ncols), double(start[k])) +
+                                 foldFlops(double(ws.ownRank[s]), double(node.nrows()), double(node.ncols),
+                                           double(ws.ownStart[s]))) +
+               signedCompressionFlops(double(node.below()), rankIn[k] + double(ws.ownRank[s]));
       if (p != -1 && !parentFolded) total += apply[k];
     } else {
       bottom.push_back(s);
@@ -298,16 +330,19 @@ void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index 
 }
 
 /** \internal Gives a folded supernode its previous block and update matrix, written into its new
-  * rows: the rows of the copies it gained are zero, as in the factor of the previous matrix
-  * extended with identity for the copies (its columns are the same). Without new rows they are
+  * rows and columns: the rows of the copies it gained are zero and the columns of the copies it
+  * gained (an insertion of copies of its own dofs) are those of a diagonal entry
+  * sqrt(pivotOf(permuted column)), as in the factor of the previous matrix extended with a
+  * diagonal placeholder for each copy (its old columns are the same). Without new rows they are
   * taken from the backup (\a oldValues, \a oldU: \returns true, they must then be recomputed if
   * the update is reverted), else copied. */
-template <typename Scalar, typename StorageIndex>
+template <typename Scalar, typename StorageIndex, typename PivotOf>
 bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<StorageIndex>& oldRows,
                        Matrix<Scalar, Dynamic, Dynamic>& oldValues, UpdateBuffer<Scalar>& oldU,
-                       const std::vector<StorageIndex>& newPosition, std::vector<Index>& at, UpdateBuffer<Scalar>& U) {
-  const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, oldNr = Index(oldRows.size());
-  eigen_assert(oldValues.cols() == nc && oldValues.rows() == oldNr && "a folded supernode keeps its columns");
+                       const std::vector<StorageIndex>& newPosition, std::vector<Index>& at, UpdateBuffer<Scalar>& U,
+                       PivotOf&& pivotOf) {
+  const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, oldNr = Index(oldRows.size()), oldNc = oldValues.cols();
+  eigen_assert(oldNc <= nc && oldValues.rows() == oldNr && "a folded supernode keeps its columns");
   if (oldNr == nr) {
     node.values.swap(oldValues);
     U.swap(oldU);
@@ -315,12 +350,51 @@ bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<
   }
   previousRowPositions(oldRows.data(), oldNr, node.rows.data(), newPosition, at);
   node.values.resize(nr, nc);
-  for (Index j = 0; j < nc; ++j)
-    spreadColumn(oldValues.data() + j * oldNr, at.data(), oldNr, node.values.data() + j * nr, Index(0), nr);
-  for (Index k = nc; k < oldNr; ++k) at[k - nc] = at[k] - nc;  // (the rows below, from the supernode's first one below)
-  at.resize(oldNr - nc);
+  for (Index j = 0, k = 0; j < nc; ++j) {
+    Scalar* column = node.values.data() + j * nr;
+    if (k < oldNc && at[k] == j) {  // an old column
+      spreadColumn(oldValues.data() + k * oldNr, at.data(), oldNr, column, Index(0), nr);
+      ++k;
+    } else {  // a copy's: its placeholder
+      std::fill(column, column + nr, Scalar(0));
+      column[j] = Scalar(numext::sqrt(pivotOf(Index(node.rows[j]))));
+    }
+  }
+  for (Index k = oldNc; k < oldNr; ++k) at[k - oldNc] = at[k] - nc;  // (the rows below, from the supernode's first one below)
+  at.resize(oldNr - oldNc);
   extendUpdateMatrix(oldU.data(), at, m, U);
   return false;
+}
+
+/** \internal Rewrites a signed change P P^H − N N^H (both m rows) with as few columns as its
+  * numerical rank: a thin QR of [P N] = Q R, the eigendecomposition of the small core
+  * R diag(I, −I) R^H, and eigenvalues at rounding level (of |P|² + |N|²) dropped. The update and
+  * the downdate that a fold leaves on a supernode's rows below partly cancel (a cut's own
+  * changes come as pairs e d^H + d e^H = u u^H − v v^H): without this their columns would add
+  * up along the path to the root. \a flops gets the work. */
+template <typename Dense>
+void compressSignedChange(Dense& P, Dense& N, double& flops) {
+  typedef typename Dense::Scalar Scalar;
+  typedef typename NumTraits<Scalar>::Real RealScalar;
+  const Index m = P.rows(), p = P.cols(), q = N.cols(), k = p + q;
+  Dense M(m, k);
+  M.leftCols(p) = P;
+  M.rightCols(q) = N;
+  const RealScalar scale = M.squaredNorm();
+  HouseholderQR<Dense> qr(M);
+  const Index r = (std::min)(m, k);
+  Dense R = qr.matrixQR().topRows(r).template triangularView<Upper>();
+  Dense RJ = R;
+  RJ.rightCols(q) *= Scalar(-1);
+  const Dense core = RJ * R.adjoint();
+  Dense Vp, Vn;
+  signedSquareRoots(core, RealScalar(64) * NumTraits<RealScalar>::epsilon() * scale, Vp, Vn);
+  flops += signedCompressionFlops(double(m), double(k));
+  if (Vp.cols() + Vn.cols() >= k) return;  // nothing to gain
+  const Dense Q = qr.householderQ() * Dense::Identity(m, r);
+  P.noalias() = Q * Vp;
+  N.noalias() = Q * Vn;
+  flops += 2.0 * double(m) * double(r) * double(k);
 }
 
 /** \internal Folds into the folded supernode \a s the changes of the update matrices passed up
@@ -345,37 +419,67 @@ bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNume
     std::vector<Dense>& from = *carried[sign];
     for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c])
       if (from[c].cols() > 0) src.push_back(FoldSource{f.nodes[c].parentPosition[0], from[c].cols(), c});
+    Dense& own = sign == 0 ? ws.ownPositive[s] : ws.ownNegative[s];  // the supernode's own input change
+    const std::vector<Index>& ownStart = sign == 0 ? ws.ownPositiveStart[s] : ws.ownNegativeStart[s];
+    for (Index t = 0; t < own.cols(); ++t) src.push_back(FoldSource{ownStart[t], 1, -2 - t});
     std::sort(src.begin(), src.end(), [](const FoldSource& a, const FoldSource& b) { return a.start < b.start; });
     Index rank = 0;
     for (const FoldSource& x : src) rank += x.count;
     W[sign].setZero(nr, rank);
     Index q = 0;
     for (const FoldSource& x : src) {
+      if (x.child < 0) {  // an own column
+        W[sign].col(q++) = own.col(-2 - x.child);
+        continue;
+      }
       const Dense& wc = from[x.child];
       const auto& pos = f.nodes[x.child].parentPosition;
       for (Index j = 0; j < wc.cols(); ++j, ++q)
         for (Index k = 0; k < wc.rows(); ++k) W[sign](pos[k], q) = wc(k, j);
       from[x.child] = Dense();
     }
+    own = Dense();
   }
-  flops += foldSources(node, W[0], sources[0], removed);
-  // the downdate L L^H − W W^H (false: a lost pivot, the block partly changed)
-  if (!downdateSources(node, W[1], sources[1], removed, flops)) return false;
+  const Index p = W[0].cols(), q = W[1].cols();
+  if (p > 0 && q > 0 && p < Index(BlockedFoldMinRank) && q < Index(BlockedFoldMinRank)) {
+    // small ranks of both signs (each would be folded by rotations): one sweep over the block,
+    // Givens rotations then hyperbolic ones on each column (false: a lost pivot)
+    Dense both(nr, p + q);
+    both.leftCols(p) = W[0];
+    both.rightCols(q) = W[1];
+    const Index start = (std::min)(sources[0].front().start, sources[1].front().start);
+    if (!signedRotationSweep(node, both, Index(0), p + q, p, start, removed, flops)) return false;
+    W[0] = both.leftCols(p);
+    W[1] = both.rightCols(q);
+  } else {
+    flops += foldSources(node, W[0], sources[0], removed);
+    // the downdate L L^H − W W^H (false: a lost pivot, the block partly changed)
+    if (!downdateSources(node, W[1], sources[1], removed, flops)) return false;
+  }
   if (m == 0) return true;
-  for (int sign = 0; sign < 2; ++sign) {  // what is left lives on the rows below
-    if (W[sign].cols() == 0) continue;
-    Dense out = W[sign].bottomRows(m);
-    if (out.cols() > m) {
-      HouseholderQR<Dense> qr(out.adjoint());
-      out = qr.matrixQR().topRows(m).template triangularView<Upper>().adjoint();
-      flops += double(out.cols()) * double(m) * double(m);
-    }
+  Dense out[2];  // what is left lives on the rows below
+  for (int sign = 0; sign < 2; ++sign) out[sign] = W[sign].bottomRows(m);
+  if (out[0].cols() > 0 && out[1].cols() > 0) {
+    compressSignedChange(out[0], out[1], flops);
+    if (removed)  // (the rows of removed dofs stay exactly zero: rounding in the new basis is cut off)
+      for (Index i = 0; i < m; ++i)
+        if (removed[node.rows[node.ncols + i]]) out[0].row(i).setZero(), out[1].row(i).setZero();
+  } else {
+    for (int sign = 0; sign < 2; ++sign)
+      if (out[sign].cols() > m) {
+        HouseholderQR<Dense> qr(out[sign].adjoint());
+        out[sign] = qr.matrixQR().topRows(m).template triangularView<Upper>().adjoint();
+        flops += double(out[sign].cols()) * double(m) * double(m);
+      }
+  }
+  for (int sign = 0; sign < 2; ++sign) {
+    if (out[sign].cols() == 0) continue;
     if (passUp) {
-      Dense correction = out;
+      Dense correction = out[sign];
       numeric.deferCorrection(f, s, correction, sign == 0 ? RealScalar(1) : RealScalar(-1));
-      (*carried[sign])[s].swap(out);
+      (*carried[sign])[s].swap(out[sign]);
     } else {
-      numeric.deferCorrection(f, s, out, sign == 0 ? RealScalar(1) : RealScalar(-1));
+      numeric.deferCorrection(f, s, out[sign], sign == 0 ? RealScalar(1) : RealScalar(-1));
     }
   }
   return true;
@@ -392,12 +496,12 @@ bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNume
   * \returns -1 on success, the column of a bad pivot of a refactorization, or -2 when a change
   * was not captured by its bound or a downdate lost a pivot (the caller then refactors every
   * dirty supernode: the folded ones are partly changed). \a flops gets the work. */
-template <typename Scalar, typename StorageIndex, typename Backup, typename Refactor>
+template <typename Scalar, typename StorageIndex, typename Backup, typename Refactor, typename PivotOf>
 Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
                       const std::vector<Index>& dirty, const std::vector<char>& folded,
                       const std::vector<FoldBoundary>& boundary, Backup& backup, std::vector<Index>& taken,
                       const std::vector<StorageIndex>& newPosition, const char* removed, UpdateWorkspace<Scalar>& ws,
-                      Refactor&& refactor, double& flops) {
+                      Refactor&& refactor, PivotOf&& pivotOf, double& flops) {
   std::vector<Index>& bound = ws.foldBound;  // 1 + position in boundary
   for (std::size_t k = 0; k < boundary.size(); ++k) bound[boundary[k].supernode] = Index(k) + 1;
   std::vector<Index> run, at;
@@ -434,7 +538,8 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
     }
     if (captured) {
       auto& node = f.nodes[s];
-      if (takePreviousBlock(node, backup.rows[s], backup.values[s], backup.cache[s], newPosition, at, numeric.cache()[s]))
+      if (takePreviousBlock(node, backup.rows[s], backup.values[s], backup.cache[s], newPosition, at, numeric.cache()[s],
+                            pivotOf))
         taken.push_back(s);
       const Index p = f.parent[s];
       captured = foldIntoSupernode(f, numeric, s, p != -1 && folded[p], removed, ws, flops);
@@ -447,7 +552,8 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
   if (result == -1) flush();
   for (const FoldBoundary& b : boundary) bound[b.supernode] = 0;
   if (result != -1)
-    for (Index s : dirty) ws.carried[s] = ws.carriedNegative[s] = Matrix<Scalar, Dynamic, Dynamic>();
+    for (Index s : dirty)
+      ws.carried[s] = ws.carriedNegative[s] = ws.ownPositive[s] = ws.ownNegative[s] = Matrix<Scalar, Dynamic, Dynamic>();
   return result;
 }
 

@@ -228,7 +228,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     *
     * Each new dof is eliminated right after its origin, in its origin's supernode; the
     * supernodes on the paths from the changed columns to the roots get the copies' rows and are
-    * refactored (the others keep their values). Every entry of \a matrix must lie in the
+    * refactored or updated by signed low-rank folds, whichever the cost model finds cheaper per
+    * supernode (route Mixed; the others keep their values). Every entry of \a matrix must lie in the
     * duplicated pattern: entry (i, j) needs origin[i] == origin[j] or an entry of the current
     * pattern at (origin[i], origin[j]); otherwise info() is InvalidInput and nothing changes.
     * Removed (Dirichlet) dofs stay removed; the new dofs are not removed. */
@@ -505,6 +506,13 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   /** After the input diff of replaceDofs(): the dofs (new numbering) where the cut matrix, glued
     * back, differs from the uncut one (internal::updatable_cholesky::gluingMismatches()). */
   const std::vector<StorageIndex>& gluingMismatchesOf(const DofChange& change);
+  /** After the input diff and the relabeling of an insertion: splits the input change of each
+    * \a folded supernode's own columns (new minus previous matrix, a copy's previous column being
+    * a diagonal placeholder) into P P^H − N N^H, two columns per changed column, into
+    * m_workspace.ownPositive/ownNegative; \a copyPivots gets each copy's placeholder (permuted
+    * column, value; sorted). */
+  void splitOwnInputChanges(const DofChange& change, const std::vector<char>& folded,
+                            std::vector<std::pair<StorageIndex, RealScalar> >& copyPivots);
   /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty and spent
     * \a flops (all of a refactorization's, reduced fronts counted on their kept rows), and tells
     * the kept forward substitution which blocks were rewritten: every update ends here. */
@@ -1100,6 +1108,125 @@ const std::vector<typename MatrixType_::StorageIndex>& UpdatableSupernodalLLT<Ma
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges(
+    const DofChange& change, const std::vector<char>& folded, std::vector<std::pair<StorageIndex, RealScalar> >& copyPivots) {
+  using namespace internal::updatable_cholesky;
+  typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
+  InputDiff<Scalar, StorageIndex>& diff = m_inputDiff;
+  const Index total = m_store.outerSize(), n = Index(change.newOfOld.size());
+  constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
+  const StorageIndex* perm = m_P.indices().data();  // (the new permutation)
+  const char* removed = m_removedPermuted.data();
+  struct Entry {
+    Index supernode;
+    StorageIndex row, col;  // permuted, row >= col
+    Scalar value;
+  };
+  std::vector<Entry> entries;
+  // entry (row, col) of the new matrix minus the previous one (new user numbering), in the
+  // lower triangle of the permuted matrix, when its column belongs to a folded supernode
+  auto add = [&](Index row, Index col, Scalar value) {
+    Index pi = perm[row], pj = perm[col];
+    if (pi < pj) {
+      std::swap(pi, pj);
+      value = numext::conj(value);
+    }
+    const Index t = m_factor.colToSuper[pj];
+    if (!folded[t] || removed[pi] || removed[pj]) return;
+    entries.push_back(Entry{t, StorageIndex(pi), StorageIndex(pj), value});
+  };
+  auto addRange = [&](const InputStore<Scalar, StorageIndex>& store, Index outer, Index begin, Index end, Index x,
+                      bool previous) {
+    for (Index p = begin; p < end; ++p) {
+      const Index y = previous ? Index(change.newOfOld[store.inner[p]]) : Index(store.inner[p]);
+      const Scalar value = previous ? Scalar(-store.values[p]) : store.values[p];
+      if (rowMajor)
+        add(x, y, value);
+      else
+        add(y, x, value);
+    }
+    (void)outer;
+  };
+  // each copy's placeholder: its new diagonal entry when that is positive (so that the change
+  // has no diagonal part there), else 1
+  copyPivots.clear();
+  for (Index x = n; x < total; ++x) {
+    RealScalar pivot = RealScalar(1);
+    for (Index p = m_store.begin[x]; p < m_store.end[x]; ++p)
+      if (Index(m_store.inner[p]) == x) {
+        const RealScalar d = numext::real(m_store.values[p]);
+        if (d > RealScalar(0) && d < NumTraits<RealScalar>::highest()) pivot = d;
+      }
+    copyPivots.emplace_back(perm[x], pivot);
+    add(x, x, Scalar(-pivot));
+    addRange(m_store, x, m_store.begin[x], m_store.end[x], x, false);
+  }
+  std::sort(copyPivots.begin(), copyPivots.end());
+  const InputStore<Scalar, StorageIndex>& previousStore = diff.inPlace ? m_store : diff.spare;
+  if (diff.inPlace) {
+    for (const auto& r : diff.rewrites) {
+      const Index x = change.newOfOld[r.outer];
+      if (x >= 0) addRange(previousStore, r.outer, r.begin, r.end, x, true);
+      if (r.outer < total) addRange(m_store, r.outer, m_store.begin[r.outer], m_store.end[r.outer], r.outer, false);
+    }
+  } else {
+    for (StorageIndex o : diff.changedList) {
+      const Index x = change.newOfOld[o];
+      if (x < 0) continue;
+      addRange(previousStore, o, previousStore.begin[o], previousStore.end[o], x, true);
+      addRange(m_store, x, m_store.begin[x], m_store.end[x], x, false);
+    }
+  }
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.supernode != b.supernode ? a.supernode < b.supernode : a.col != b.col ? a.col < b.col : a.row < b.row;
+  });
+  std::vector<StorageIndex>& position = diff.position;  // (by new permuted row, all -1 between uses)
+  const RealScalar half = RealScalar(0.5), rootHalf = numext::sqrt(half);
+  for (std::size_t g = 0; g < entries.size();) {
+    const Index t = entries[g].supernode;
+    std::size_t h = g;
+    Index columns = 0;
+    for (; h < entries.size() && entries[h].supernode == t; ++h) columns += h == g || entries[h].col != entries[h - 1].col;
+    const auto& node = m_factor.nodes[t];
+    const Index nr = node.nrows();
+    for (Index k = 0; k < nr; ++k) position[node.rows[k]] = StorageIndex(k);
+    Dense D = Dense::Zero(nr, columns);
+    std::vector<Index> local(columns);
+    for (Index q = -1; g < h; ++g) {
+      if (q < 0 || Index(entries[g].col) != node.firstCol + local[q]) local[++q] = Index(entries[g].col) - node.firstCol;
+      D(position[entries[g].row], q) += entries[g].value;
+    }
+    for (Index k = 0; k < nr; ++k) position[node.rows[k]] = StorageIndex(-1);
+    // column j's change d (diagonal halved): e_j d^H + d e_j^H = u u^H - v v^H with
+    // u, v = (a e_j +- d / a) / sqrt(2), a^2 = |d| (balanced)
+    Dense& P = m_workspace.ownPositive[t];
+    Dense& N = m_workspace.ownNegative[t];
+    std::vector<Index>&startP = m_workspace.ownPositiveStart[t], &startN = m_workspace.ownNegativeStart[t];
+    P.resize(nr, columns);
+    N.resize(nr, columns);
+    startP.clear();
+    startN.clear();
+    for (Index q = 0; q < columns; ++q) {
+      const Index j = local[q];
+      auto d = D.col(q);
+      d[j] = Scalar(half * numext::real(d[j]));
+      const RealScalar norm = d.norm();
+      if (!(norm > RealScalar(0))) continue;
+      const RealScalar a = numext::sqrt(norm);
+      const Index k = Index(startP.size());
+      P.col(k) = d * (rootHalf / a);
+      N.col(k) = -P.col(k);
+      P(j, k) += Scalar(rootHalf * a);
+      N(j, k) += Scalar(rootHalf * a);
+      startP.push_back(j);
+      startN.push_back(j);
+    }
+    P.conservativeResize(nr, Index(startP.size()));
+    N.conservativeResize(nr, Index(startN.size()));
+  }
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
 void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const MatrixType& a, DofChange& change) {
   using namespace internal::updatable_cholesky;
   const auto start = std::chrono::steady_clock::now();
@@ -1277,7 +1404,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         same = o >= 0 && !changed[o];
       }
       const bool sameRows = !change.merging || Index(backup.rows[s].size()) == node.nrows();
-      eligible[s] = sameRows && backup.ncols[s] == node.ncols && same;
+      // an insertion may also fold a supernode whose own columns changed or gained copies: its
+      // own input change is folded with the children's (splitOwnInputChanges())
+      eligible[s] = !change.merging || (sameRows && backup.ncols[s] == node.ncols && same);
       if (eligible[s]) eligibleFlops += internal::updatable_cholesky::frontFlops(node, removedFlags);
     }
     const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
@@ -1294,6 +1423,18 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
             rowRank[s] += 2 * (change.oldOfNew[m_Pinv.indices()[node.rows[k]]] < 0);
         rankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);  // merged away
         likelyRankColumns[s] = rankColumns[s];
+      }
+      if (!change.merging) {  // the own input changes: two per changed or new column
+        std::vector<Index>&ownRank = m_workspace.ownRank, &ownStart = m_workspace.ownStart;
+        auto own = [&](Index x) {
+          const Index j = m_P.indices()[x];
+          if (m_removedPermuted[j]) return;
+          const Index t = m_factor.colToSuper[j], local = j - m_factor.nodes[t].firstCol;
+          ownStart[t] = ownRank[t] == 0 ? local : (std::min)(ownStart[t], local);
+          ownRank[t] += 2;
+        };
+        for (StorageIndex o : diff.changedList) own(change.newOfOld[o]);
+        for (Index x = n; x < total; ++x) own(x);
       }
       // every cost of a plan grows with the ranks: when the plan on that lower bound saves
       // nothing, neither does the one with the mismatches, and the compare is not made (a
@@ -1326,7 +1467,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         plannedFlops = planned;
       }
     }
-    for (Index s : dirty) eligible[s] = rankColumns[s] = likelyRankColumns[s] = rowRank[s] = 0;
+    for (Index s : dirty)
+      eligible[s] = rankColumns[s] = likelyRankColumns[s] = rowRank[s] = m_workspace.ownRank[s] = m_workspace.ownStart[s] = 0;
   }
   UpdateRoute route = top.empty() ? UpdateRoute::PartialRefactorization : UpdateRoute::Mixed;
   const bool forced = m_route != UpdateRoute::Automatic;  // (a forced Mixed or partial route stays)
@@ -1342,11 +1484,19 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     // Mixed: the folded supernodes start from their previous blocks and update matrices
     // (extended to their new rows, or taken from the backup: listed in taken), the others are refactored
     spentFlops = 0;
+    std::vector<std::pair<StorageIndex, RealScalar> > copyPivots;
+    if (!change.merging) splitOwnInputChanges(change, folded, copyPivots);
+    auto pivotOf = [&copyPivots](Index column) {
+      const auto it = std::lower_bound(copyPivots.begin(), copyPivots.end(), column,
+                                       [](const std::pair<StorageIndex, RealScalar>& e, Index c) { return Index(e.first) < c; });
+      eigen_assert(it != copyPivots.end() && Index(it->first) == column && "a new column without its placeholder");
+      return it->second;
+    };
     const Index result = refactorAndFold(
         m_factor, m_numeric, dirty, folded, boundary, backup, taken, change.relabel.newPosition, m_removedPermuted.data(),
         m_workspace,
         [&](const std::vector<Index>& list) { return m_numeric.refactorize(m_factor, numericInput(), list, threadCount()); },
-        spentFlops);
+        pivotOf, spentFlops);
     if (result != -2) return result;
     // a change not captured by its rank bound, or a downdate lost a pivot: refactor every dirty supernode instead
     for (Index s : dirty) m_numeric.discardCorrections(s);
