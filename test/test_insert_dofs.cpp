@@ -647,27 +647,29 @@ TEST_CASE_TEMPLATE("insertDofs folds below a refactored root (the previous facto
   checkAgainstFresh<Cfg>(llt, A0, g, lowRankTolerance<Cfg>());
 }
 
-TEST_CASE_TEMPLATE("insertDofs folds a cut through the root separator instead of refactoring the root", Cfg,
+TEST_CASE_TEMPLATE("insertDofs/mergeDofs fold a cut through the root separator instead of refactoring the root", Cfg,
                    UC_CORE_CONFIGS) {
   // copies of dofs of the root supernode (the last three eliminated): their own input changes
   // (the copies' columns, the changed columns of their neighbours) are folded like the changes
   // passed up from below, so that under a nested-dissection ordering (where refactoring the
   // dirty supernodes costs much, the root's front most of it) the automatic route costs far
-  // less; the factor matches a fresh one under every ordering
+  // less; the factor matches a fresh one under every ordering. The merge that undoes the cut
+  // likewise (folded in the previous structure, the merged dofs then dropped)
   typedef typename Cfg::FullMatrix FullMatrix;
   Eigen::MatrixXd V;
   Eigen::MatrixXi F;
   Eigen::gridMesh(70, 70, V, F);
   const FullMatrix A = Eigen::cotanLaplacian<typename Cfg::Scalar, typename Cfg::StorageIndex>(V, F);
   std::mt19937 g(5);
-  double flops[2] = {0, 0};
-  Eigen::UpdateRoute route = Eigen::UpdateRoute::Automatic;
+  double flops[2] = {0, 0}, mergeFlops[2] = {0, 0};
+  Eigen::UpdateRoute route = Eigen::UpdateRoute::Automatic, mergeRoute = Eigen::UpdateRoute::Automatic;
   for (int partial = 0; partial < 2; ++partial) {
     CAPTURE(partial);
     SplitGraph<typename Cfg::Scalar> G = graphOf<Cfg>(A);
+    const FullMatrix A0 = G.template matrix<FullMatrix>();
     typename Cfg::Solver llt;
     llt.setUpdateCaching(true);
-    llt.compute(toInput<Cfg>(G.template matrix<FullMatrix>()));
+    llt.compute(toInput<Cfg>(A0));
     REQUIRE(llt.info() == Eigen::Success);
     const Index n = A.rows();
     std::vector<int> last(3, -1);
@@ -684,6 +686,18 @@ TEST_CASE_TEMPLATE("insertDofs folds a cut through the root separator instead of
     flops[partial] = llt.lastUpdate().flopFraction;
     if (!partial) route = llt.lastUpdate().route;
     checkAgainstFresh<Cfg>(llt, Acut, g, partial ? exactTolerance<Cfg>() : lowRankTolerance<Cfg>());
+    llt.mergeDofs(toInput<Cfg>(A0), origin);
+    REQUIRE(llt.info() == Eigen::Success);
+    REQUIRE(llt.rows() == n);
+    mergeFlops[partial] = llt.lastUpdate().flopFraction;
+    if (!partial) mergeRoute = llt.lastUpdate().route;
+    checkAgainstFresh<Cfg>(llt, A0, g, partial ? exactTolerance<Cfg>() : lowRankTolerance<Cfg>());
+  }
+  CAPTURE(mergeFlops[0]);
+  CAPTURE(mergeFlops[1]);
+  if (mergeFlops[1] > 0.05) {
+    CHECK(mergeRoute == Eigen::UpdateRoute::Mixed);
+    CHECK(mergeFlops[0] < 0.5 * mergeFlops[1]);
   }
   CAPTURE(flops[0]);
   CAPTURE(flops[1]);

@@ -8,11 +8,13 @@
 // diagonal placeholder per copy (zero rows for the copies; a copy's column is its placeholder,
 // the square root of its new diagonal entry), and its previous update matrix, extended with zero
 // rows and columns (as in the paper's rowadd setup). Its values then change through:
-//  - its own input (insertions): a column that gained copies or changed values brings the change
+//  - its own input: a column that gained copies or changed values brings the change
 //    e_j d^H + d e_j^H (d: new minus previous entries of column j on the supernode's rows, the
 //    diagonal halved), split as u u^H − v v^H with u, v = (a e_j ± d / a) / sqrt(2), a² = |d|,
-//    zero above the column's own row (a merge folds only supernodes that keep their columns and
-//    input);
+//    zero above the column's own row. A merge folds in the previous structure instead: each merged
+//    dof's new column is a diagonal placeholder (its previous diagonal entry), so that after the
+//    fold its row is zero and its column the placeholder's, and both are dropped
+//    (foldMergedSupernode(); without removed dofs, whose flags are in the new numbering only);
 //  - the update matrices its children pass up. The change of a refactored child's update matrix,
 //    U' − U = L21' L21'^H − L21 L21^H, has a small rank: written in the variables (last copy,
 //    differences to it), a cut that glues back to the uncut matrix only adds one row and column
@@ -406,7 +408,8 @@ void compressSignedChange(Dense& P, Dense& N, double& flops) {
   * \returns false when a downdate loses a pivot (the block is then partly changed). */
 template <typename Scalar, typename StorageIndex>
 bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
-                       Index s, bool passUp, const char* removed, UpdateWorkspace<Scalar>& ws, double& flops) {
+                       Index s, bool passUp, const char* removed, UpdateWorkspace<Scalar>& ws, double& flops,
+                       const std::vector<std::vector<StorageIndex> >* childPositions = nullptr) {
   typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
   typedef typename NumTraits<Scalar>::Real RealScalar;
   std::vector<FoldSource> sources[2];
@@ -418,7 +421,8 @@ bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNume
     std::vector<FoldSource>& src = sources[sign];
     std::vector<Dense>& from = *carried[sign];
     for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c])
-      if (from[c].cols() > 0) src.push_back(FoldSource{f.nodes[c].parentPosition[0], from[c].cols(), c});
+      if (from[c].cols() > 0)
+        src.push_back(FoldSource{(childPositions ? (*childPositions)[c] : f.nodes[c].parentPosition)[0], from[c].cols(), c});
     Dense& own = sign == 0 ? ws.ownPositive[s] : ws.ownNegative[s];  // the supernode's own input change
     const std::vector<Index>& ownStart = sign == 0 ? ws.ownPositiveStart[s] : ws.ownNegativeStart[s];
     for (Index t = 0; t < own.cols(); ++t) src.push_back(FoldSource{ownStart[t], 1, -2 - t});
@@ -433,7 +437,7 @@ bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNume
         continue;
       }
       const Dense& wc = from[x.child];
-      const auto& pos = f.nodes[x.child].parentPosition;
+      const auto& pos = childPositions ? (*childPositions)[x.child] : f.nodes[x.child].parentPosition;
       for (Index j = 0; j < wc.cols(); ++j, ++q)
         for (Index k = 0; k < wc.rows(); ++k) W[sign](pos[k], q) = wc(k, j);
       from[x.child] = Dense();
@@ -485,6 +489,64 @@ bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNume
   return true;
 }
 
+/** \internal The positions, among \a count previous rows \a oldRows, of those a merge keeps
+  * (newPosition >= 0), in order: the new rows' previous positions. */
+template <typename StorageIndex>
+void keptRowPositions(const StorageIndex* oldRows, Index count, const std::vector<StorageIndex>& newPosition,
+                      std::vector<Index>& kept) {
+  kept.clear();
+  for (Index k = 0; k < count; ++k)
+    if (newPosition[oldRows[k]] >= 0) kept.push_back(k);
+}
+
+/** \internal Folds supernode \a s of a merge in its previous structure (rows and columns of the
+  * merged dofs included; \a backup holds them): its previous block and update matrix take the
+  * changes (its own input change, with each merged dof's row and column made a diagonal
+  * placeholder, and those passed up by its children on their previous rows, placed by their
+  * previous relative positions), which leave the merged dofs' rows zero (up to rounding) and
+  * their columns placeholders; then the block and the update matrix lose them. What is passed up
+  * stays on the previous rows below. \a zeros: removed flags by previous permuted row (none).
+  * \returns false on a lost pivot (the block is then partly changed). */
+template <typename Scalar, typename StorageIndex, typename Backup>
+bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
+                         Index s, bool passUp, Backup& backup, const std::vector<StorageIndex>& newPosition,
+                         const char* zeros, UpdateWorkspace<Scalar>& ws, double& flops) {
+  auto& node = f.nodes[s];
+  auto& U = numeric.cache()[s];
+  auto previousStructure = [&]() {
+    node.rows.swap(backup.rows[s]);
+    std::swap(node.ncols, backup.ncols[s]);
+    node.values.swap(backup.values[s]);
+    U.swap(backup.cache[s]);
+  };
+  previousStructure();  // (the node now holds its previous rows, block and update matrix)
+  const bool ok = foldIntoSupernode(f, numeric, s, passUp, zeros, ws, flops, &backup.parentPosition);
+  if (ok) numeric.applyCorrections(f, s);  // (on the previous rows: U is cut down next)
+  const Index oldNr = node.nrows(), oldNc = node.ncols, oldM = oldNr - oldNc;
+  std::vector<Index> kept;
+  keptRowPositions(node.rows.data(), oldNr, newPosition, kept);
+  Matrix<Scalar, Dynamic, Dynamic> block;
+  UpdateBuffer<Scalar> cut;
+  if (ok) {
+    const Index nr = Index(kept.size());
+    Index nc = 0;
+    while (nc < nr && kept[nc] < oldNc) ++nc;
+    block.resize(nr, nc);
+    for (Index j = 0; j < nc; ++j)
+      for (Index i = 0; i < nr; ++i) block(i, j) = node.values(kept[i], kept[j]);
+    const Index m = nr - nc;
+    cut.resize(m * m);
+    for (Index j = 0; j < m; ++j)
+      for (Index i = j; i < m; ++i) cut[i + j * m] = U[(kept[nc + i] - oldNc) + (kept[nc + j] - oldNc) * oldM];
+  }
+  previousStructure();  // (back to the new rows; the previous block and update matrix are in the backup)
+  if (!ok) return false;
+  node.values.swap(block);
+  U.swap(cut);
+  eigen_assert(node.values.rows() == node.nrows() && node.values.cols() == node.ncols && "a merge fold lost its shape");
+  return true;
+}
+
 /** \internal The refactored-and-folded update of a structural change (see foldPlan()): walks the
   * dirty supernodes children first; the refactored ones are recomputed by \a refactor (given a
   * list, increasing; returns -1 or the permuted column of a bad pivot), in runs, so that a
@@ -501,7 +563,8 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
                       const std::vector<Index>& dirty, const std::vector<char>& folded,
                       const std::vector<FoldBoundary>& boundary, Backup& backup, std::vector<Index>& taken,
                       const std::vector<StorageIndex>& newPosition, const char* removed, UpdateWorkspace<Scalar>& ws,
-                      Refactor&& refactor, PivotOf&& pivotOf, double& flops) {
+                      Refactor&& refactor, PivotOf&& pivotOf, double& flops, bool merging = false,
+                      const char* previousZeros = nullptr) {
   std::vector<Index>& bound = ws.foldBound;  // 1 + position in boundary
   for (std::size_t k = 0; k < boundary.size(); ++k) bound[boundary[k].supernode] = Index(k) + 1;
   std::vector<Index> run, at;
@@ -527,16 +590,27 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
       auto& child = f.nodes[c];
       const Index m = child.below(), oldNc = backup.ncols[c], oldM = Index(backup.rows[c].size()) - oldNc;
       const Scalar* oldU = backup.cache[c].data();
+      const FoldBoundary& b = boundary[bound[c] - 1];
+      if (merging) {  // on the previous rows below: the new update matrix gets zero rows at the merged dofs
+        keptRowPositions(backup.rows[c].data() + oldNc, oldM, newPosition, at);
+        extendUpdateMatrix(numeric.cache()[c].data(), at, oldM, previousU);
+        captured = updateMatrixChange(previousU.data(), oldU, oldM, b.likely, b.bound, ws.carried[c],
+                                      ws.carriedNegative[c], flops);
+        continue;
+      }
       if (oldM != m) {  // (copy rows gained below)
         previousRowPositions(backup.rows[c].data() + oldNc, oldM, child.rows.data() + child.ncols, newPosition, at);
         extendUpdateMatrix(oldU, at, m, previousU);
         oldU = previousU.data();
       }
-      const FoldBoundary& b = boundary[bound[c] - 1];
       captured = updateMatrixChange(numeric.cache()[c].data(), oldU, m, b.likely, b.bound, ws.carried[c],
                                     ws.carriedNegative[c], flops);
     }
-    if (captured) {
+    if (captured && merging) {
+      const Index p = f.parent[s];
+      taken.push_back(s);  // (its previous block is consumed)
+      captured = foldMergedSupernode(f, numeric, s, p != -1 && folded[p], backup, newPosition, previousZeros, ws, flops);
+    } else if (captured) {
       auto& node = f.nodes[s];
       if (takePreviousBlock(node, backup.rows[s], backup.values[s], backup.cache[s], newPosition, at, numeric.cache()[s],
                             pivotOf))

@@ -1115,88 +1115,109 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges
   InputDiff<Scalar, StorageIndex>& diff = m_inputDiff;
   const Index total = m_store.outerSize(), n = Index(change.newOfOld.size());
   constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
-  const StorageIndex* perm = m_P.indices().data();  // (the new permutation)
-  const char* removed = m_removedPermuted.data();
+  // an insertion folds in the new structure (new numbering); a merge in the previous one (the
+  // merged dofs' rows and columns still there, previous numbering)
+  const bool previousStructure = change.merging;
+  const StorageIndex* perm = previousStructure ? change.newPerm.data() : m_P.indices().data();
+  const std::vector<StorageIndex>& colToSuper = previousStructure ? m_structureBackup.colToSuper : m_factor.colToSuper;
+  const char* removed = previousStructure ? nullptr : m_removedPermuted.data();  // (a merge folds only without removed dofs)
   struct Entry {
     Index supernode;
     StorageIndex row, col;  // permuted, row >= col
     Scalar value;
   };
   std::vector<Entry> entries;
-  // entry (row, col) of the new matrix minus the previous one (new user numbering), in the
-  // lower triangle of the permuted matrix, when its column belongs to a folded supernode
+  // entry (row, col) of the new matrix minus the previous one (dofs in the folding numbering),
+  // in the lower triangle of the permuted matrix, when its column belongs to a folded supernode
   auto add = [&](Index row, Index col, Scalar value) {
     Index pi = perm[row], pj = perm[col];
     if (pi < pj) {
       std::swap(pi, pj);
       value = numext::conj(value);
     }
-    const Index t = m_factor.colToSuper[pj];
-    if (!folded[t] || removed[pi] || removed[pj]) return;
+    const Index t = colToSuper[pj];
+    if (!folded[t] || (removed && (removed[pi] || removed[pj]))) return;
     entries.push_back(Entry{t, StorageIndex(pi), StorageIndex(pj), value});
   };
-  auto addRange = [&](const InputStore<Scalar, StorageIndex>& store, Index outer, Index begin, Index end, Index x,
-                      bool previous) {
+  // the entries of an outer vector \a outer of the new store (\a previous false) or of the
+  // previous one, added with their sign
+  auto addRange = [&](const InputStore<Scalar, StorageIndex>& store, Index outer, Index begin, Index end, bool previous) {
+    auto dof = [&](Index d) {  // -> the folding numbering
+      if (previousStructure) return previous ? d : Index(change.oldOfNew[d]);
+      return previous ? Index(change.newOfOld[d]) : d;
+    };
+    const Index x = dof(outer);
     for (Index p = begin; p < end; ++p) {
-      const Index y = previous ? Index(change.newOfOld[store.inner[p]]) : Index(store.inner[p]);
+      const Index y = dof(Index(store.inner[p]));
       const Scalar value = previous ? Scalar(-store.values[p]) : store.values[p];
       if (rowMajor)
         add(x, y, value);
       else
         add(y, x, value);
     }
-    (void)outer;
   };
-  // each copy's placeholder: its new diagonal entry when that is positive (so that the change
-  // has no diagonal part there), else 1
-  copyPivots.clear();
-  for (Index x = n; x < total; ++x) {
+  // the diagonal entry of outer vector x (its range [begin, end)) when positive, else 1
+  auto positiveDiagonal = [](const InputStore<Scalar, StorageIndex>& store, Index x, Index begin, Index end) {
     RealScalar pivot = RealScalar(1);
-    for (Index p = m_store.begin[x]; p < m_store.end[x]; ++p)
-      if (Index(m_store.inner[p]) == x) {
-        const RealScalar d = numext::real(m_store.values[p]);
+    for (Index p = begin; p < end; ++p)
+      if (Index(store.inner[p]) == x) {
+        const RealScalar d = numext::real(store.values[p]);
         if (d > RealScalar(0) && d < NumTraits<RealScalar>::highest()) pivot = d;
       }
-    copyPivots.emplace_back(perm[x], pivot);
-    add(x, x, Scalar(-pivot));
-    addRange(m_store, x, m_store.begin[x], m_store.end[x], x, false);
-  }
-  std::sort(copyPivots.begin(), copyPivots.end());
+    return pivot;
+  };
   const InputStore<Scalar, StorageIndex>& previousStore = diff.inPlace ? m_store : diff.spare;
-  if (diff.inPlace) {
+  // the placeholders: each copy's previous column (insertion) and each merged dof's new one is a
+  // diagonal entry, that of its matrix when positive (so that the change has no diagonal part
+  // there), else 1
+  copyPivots.clear();
+  if (!previousStructure)
+    for (Index x = n; x < total; ++x) {
+      const RealScalar pivot = positiveDiagonal(m_store, x, m_store.begin[x], m_store.end[x]);
+      copyPivots.emplace_back(perm[x], pivot);
+      add(x, x, Scalar(-pivot));
+      addRange(m_store, x, m_store.begin[x], m_store.end[x], false);
+    }
+  std::sort(copyPivots.begin(), copyPivots.end());
+  auto mergedPlaceholder = [&](Index o, Index begin, Index end) {  // (merge: a merged dof's new column)
+    if (previousStructure && change.newOfOld[o] < 0) add(o, o, Scalar(positiveDiagonal(previousStore, o, begin, end)));
+  };
+  if (diff.inPlace) {  // (a merged dof's outer vector is among the rewrites)
     for (const auto& r : diff.rewrites) {
-      const Index x = change.newOfOld[r.outer];
-      if (x >= 0) addRange(previousStore, r.outer, r.begin, r.end, x, true);
-      if (r.outer < total) addRange(m_store, r.outer, m_store.begin[r.outer], m_store.end[r.outer], r.outer, false);
+      mergedPlaceholder(r.outer, r.begin, r.end);
+      if (previousStructure || change.newOfOld[r.outer] >= 0) addRange(previousStore, r.outer, r.begin, r.end, true);
+      if (r.outer < total) addRange(m_store, r.outer, m_store.begin[r.outer], m_store.end[r.outer], false);
     }
   } else {
     for (StorageIndex o : diff.changedList) {
       const Index x = change.newOfOld[o];
-      if (x < 0) continue;
-      addRange(previousStore, o, previousStore.begin[o], previousStore.end[o], x, true);
-      addRange(m_store, x, m_store.begin[x], m_store.end[x], x, false);
+      if (x < 0 && !previousStructure) continue;
+      mergedPlaceholder(o, previousStore.begin[o], previousStore.end[o]);
+      addRange(previousStore, o, previousStore.begin[o], previousStore.end[o], true);
+      if (x >= 0) addRange(m_store, x, m_store.begin[x], m_store.end[x], false);
     }
   }
   std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
     return a.supernode != b.supernode ? a.supernode < b.supernode : a.col != b.col ? a.col < b.col : a.row < b.row;
   });
-  std::vector<StorageIndex>& position = diff.position;  // (by new permuted row, all -1 between uses)
+  std::vector<StorageIndex>& position = diff.position;  // (by permuted row, all -1 between uses)
+  if (Index(position.size()) < n) position.resize(n, StorageIndex(-1));  // (a merge's previous numbering)
   const RealScalar half = RealScalar(0.5), rootHalf = numext::sqrt(half);
   for (std::size_t g = 0; g < entries.size();) {
     const Index t = entries[g].supernode;
     std::size_t h = g;
     Index columns = 0;
     for (; h < entries.size() && entries[h].supernode == t; ++h) columns += h == g || entries[h].col != entries[h - 1].col;
-    const auto& node = m_factor.nodes[t];
-    const Index nr = node.nrows();
-    for (Index k = 0; k < nr; ++k) position[node.rows[k]] = StorageIndex(k);
+    const std::vector<StorageIndex>& rows = previousStructure ? m_structureBackup.rows[t] : m_factor.nodes[t].rows;
+    const Index nr = Index(rows.size()), firstCol = Index(rows[0]);
+    for (Index k = 0; k < nr; ++k) position[rows[k]] = StorageIndex(k);
     Dense D = Dense::Zero(nr, columns);
     std::vector<Index> local(columns);
     for (Index q = -1; g < h; ++g) {
-      if (q < 0 || Index(entries[g].col) != node.firstCol + local[q]) local[++q] = Index(entries[g].col) - node.firstCol;
+      if (q < 0 || Index(entries[g].col) != firstCol + local[q]) local[++q] = Index(entries[g].col) - firstCol;
       D(position[entries[g].row], q) += entries[g].value;
     }
-    for (Index k = 0; k < nr; ++k) position[node.rows[k]] = StorageIndex(-1);
+    for (Index k = 0; k < nr; ++k) position[rows[k]] = StorageIndex(-1);
     // column j's change d (diagonal halved): e_j d^H + d e_j^H = u u^H - v v^H with
     // u, v = (a e_j +- d / a) / sqrt(2), a^2 = |d| (balanced)
     Dense& P = m_workspace.ownPositive[t];
@@ -1378,6 +1399,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   //    lower dirty supernodes and fold the change into the top ones (LowRankTopUpdate.h).
   const char* removedFlags = m_removedList.empty() ? nullptr : m_removedPermuted.data();
   const double dirtyFlops = supernodeFlops(m_factor, dirty, removedFlags);
+  // a merge folds supernodes that lose dofs or whose input changed in their previous structure,
+  // where no removed flags are at hand: only without removed dofs
+  const bool mergeFolds = change.merging && m_removedList.empty() && oldRemovedList.empty();
   const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
   std::vector<Index> bottom, top;
   std::vector<internal::updatable_cholesky::FoldBoundary> boundary;
@@ -1404,9 +1428,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         same = o >= 0 && !changed[o];
       }
       const bool sameRows = !change.merging || Index(backup.rows[s].size()) == node.nrows();
-      // an insertion may also fold a supernode whose own columns changed or gained copies: its
-      // own input change is folded with the children's (splitOwnInputChanges())
-      eligible[s] = !change.merging || (sameRows && backup.ncols[s] == node.ncols && same);
+      // a supernode whose own columns changed or gained copies (insertion) or lose merged dofs
+      // (merge) may be folded too: its own input change is folded with the children's
+      // (splitOwnInputChanges()); a merge does so in the previous structure, without removed dofs
+      eligible[s] = !change.merging || mergeFolds || (sameRows && backup.ncols[s] == node.ncols && same);
       if (eligible[s]) eligibleFlops += internal::updatable_cholesky::frontFlops(node, removedFlags);
     }
     const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
@@ -1421,20 +1446,33 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         if (!change.merging)
           for (Index k = node.ncols; k < node.nrows(); ++k)
             rowRank[s] += 2 * (change.oldOfNew[m_Pinv.indices()[node.rows[k]]] < 0);
+        else if (mergeFolds)  // (its change is taken on its previous rows below, the merged ones included)
+          for (Index k = backup.ncols[s]; k < Index(backup.rows[s].size()); ++k)
+            rowRank[s] += 2 * (change.relabel.newPosition[backup.rows[s][k]] < 0);
         rankColumns[s] += (std::max)(Index(0), backup.ncols[s] - node.ncols);  // merged away
         likelyRankColumns[s] = rankColumns[s];
       }
-      if (!change.merging) {  // the own input changes: two per changed or new column
+      if (!change.merging || mergeFolds) {  // the own input changes: two per changed, new or merged column
         std::vector<Index>&ownRank = m_workspace.ownRank, &ownStart = m_workspace.ownStart;
-        auto own = [&](Index x) {
-          const Index j = m_P.indices()[x];
-          if (m_removedPermuted[j]) return;
-          const Index t = m_factor.colToSuper[j], local = j - m_factor.nodes[t].firstCol;
+        auto own = [&](Index t, Index local) {
           ownStart[t] = ownRank[t] == 0 ? local : (std::min)(ownStart[t], local);
           ownRank[t] += 2;
         };
-        for (StorageIndex o : diff.changedList) own(change.newOfOld[o]);
-        for (Index x = n; x < total; ++x) own(x);
+        auto ownNew = [&](Index x) {  // (new numbering)
+          const Index j = m_P.indices()[x];
+          if (m_removedPermuted[j]) return;
+          const Index t = m_factor.colToSuper[j];
+          own(t, j - m_factor.nodes[t].firstCol);
+        };
+        for (StorageIndex o : diff.changedList) {
+          if (change.newOfOld[o] >= 0) {
+            ownNew(change.newOfOld[o]);
+          } else {  // a merged dof: its previous column (its supernode's numbering is kept)
+            const Index j = change.newPerm[o], t = backup.colToSuper[j];
+            own(t, j - backup.firstCol[t]);
+          }
+        }
+        for (Index x = n; x < total; ++x) ownNew(x);
       }
       // every cost of a plan grows with the ranks: when the plan on that lower bound saves
       // nothing, neither does the one with the mismatches, and the compare is not made (a
@@ -1485,7 +1523,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     // (extended to their new rows, or taken from the backup: listed in taken), the others are refactored
     spentFlops = 0;
     std::vector<std::pair<StorageIndex, RealScalar> > copyPivots;
-    if (!change.merging) splitOwnInputChanges(change, folded, copyPivots);
+    if (!change.merging || mergeFolds) splitOwnInputChanges(change, folded, copyPivots);
+    std::vector<char> previousZeros(mergeFolds ? std::size_t(oldN) : std::size_t(0), 0);  // (no removed dofs)
     auto pivotOf = [&copyPivots](Index column) {
       const auto it = std::lower_bound(copyPivots.begin(), copyPivots.end(), column,
                                        [](const std::pair<StorageIndex, RealScalar>& e, Index c) { return Index(e.first) < c; });
@@ -1496,7 +1535,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         m_factor, m_numeric, dirty, folded, boundary, backup, taken, change.relabel.newPosition, m_removedPermuted.data(),
         m_workspace,
         [&](const std::vector<Index>& list) { return m_numeric.refactorize(m_factor, numericInput(), list, threadCount()); },
-        pivotOf, spentFlops);
+        pivotOf, spentFlops, mergeFolds, previousZeros.data());
     if (result != -2) return result;
     // a change not captured by its rank bound, or a downdate lost a pivot: refactor every dirty supernode instead
     for (Index s : dirty) m_numeric.discardCorrections(s);
