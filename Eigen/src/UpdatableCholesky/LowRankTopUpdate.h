@@ -521,10 +521,18 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
   };
   previousStructure();  // (the node now holds its previous rows, block and update matrix)
   const bool ok = foldIntoSupernode(f, numeric, s, passUp, zeros, ws, flops, &backup.parentPosition);
-  if (ok) numeric.applyCorrections(f, s);  // (on the previous rows: U is cut down next)
   const Index oldNr = node.nrows(), oldNc = node.ncols, oldM = oldNr - oldNc;
   std::vector<Index> kept;
   keptRowPositions(node.rows.data(), oldNr, newPosition, kept);
+  if (ok) {  // the deferred corrections lose the merged rows too (U does below)
+    Index nc = 0;
+    while (nc < Index(kept.size()) && kept[nc] < oldNc) ++nc;
+    for (auto& correction : numeric.pendingCorrections(s)) {
+      Matrix<Scalar, Dynamic, Dynamic> W(Index(kept.size()) - nc, correction.W.cols());
+      for (Index i = nc; i < Index(kept.size()); ++i) W.row(i - nc) = correction.W.row(kept[i] - oldNc);
+      correction.W.swap(W);
+    }
+  }
   Matrix<Scalar, Dynamic, Dynamic> block;
   UpdateBuffer<Scalar> cut;
   if (ok) {
@@ -606,7 +614,7 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
       captured = updateMatrixChange(numeric.cache()[c].data(), oldU, m, b.likely, b.bound, ws.carried[c],
                                     ws.carriedNegative[c], flops);
     }
-    if (captured && merging) {
+    if (captured && merging && Index(backup.rows[s].size()) != f.nodes[s].nrows()) {  // (it loses merged dofs)
       const Index p = f.parent[s];
       taken.push_back(s);  // (its previous block is consumed)
       captured = foldMergedSupernode(f, numeric, s, p != -1 && folded[p], backup, newPosition, previousZeros, ws, flops);
