@@ -561,8 +561,12 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
   * folded supernode finds its children done; a folded one gets its previous block and update
   * matrix extended to its new rows (from \a backup, which keeps them), the changes of its
   * refactored children's update matrices split into signed low-rank parts
-  * (updateMatrixChange(), with the bounds of \a boundary), and the fold (foldIntoSupernode()).
-  * The folded supernodes whose previous block left \a backup are listed in \a taken.
+  * (updateMatrixChange(), with the bounds of \a boundary), and the fold (foldIntoSupernode()),
+  * with its own input change when ws holds one (a copy column's placeholder: \a pivotOf). With
+  * \a merging, the changes are taken on the previous rows and a folded supernode that loses
+  * merged dofs is folded in its previous structure (foldMergedSupernode(); \a previousZeros:
+  * removed flags by previous permuted row, none). The folded supernodes whose previous block
+  * left \a backup are listed in \a taken.
   * \returns -1 on success, the column of a bad pivot of a refactorization, or -2 when a change
   * was not captured by its bound or a downdate lost a pivot (the caller then refactors every
   * dirty supernode: the folded ones are partly changed). \a flops gets the work. */

@@ -506,11 +506,12 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   /** After the input diff of replaceDofs(): the dofs (new numbering) where the cut matrix, glued
     * back, differs from the uncut one (internal::updatable_cholesky::gluingMismatches()). */
   const std::vector<StorageIndex>& gluingMismatchesOf(const DofChange& change);
-  /** After the input diff and the relabeling of an insertion: splits the input change of each
-    * \a folded supernode's own columns (new minus previous matrix, a copy's previous column being
-    * a diagonal placeholder) into P P^H − N N^H, two columns per changed column, into
-    * m_workspace.ownPositive/ownNegative; \a copyPivots gets each copy's placeholder (permuted
-    * column, value; sorted). */
+  /** After the input diff and the relabeling of an insertion or a merge: splits the input change
+    * of each \a folded supernode's own columns (new minus previous matrix; a copy's previous
+    * column, or a merged dof's new one, being a diagonal placeholder) into P P^H − N N^H, two
+    * columns per changed column, into m_workspace.ownPositive/ownNegative, on the supernode's new
+    * rows (insertion) or previous rows (merge); \a copyPivots gets each copy's placeholder
+    * (permuted column, value; sorted; insertion only). */
   void splitOwnInputChanges(const DofChange& change, const std::vector<char>& folded,
                             std::vector<std::pair<StorageIndex, RealScalar> >& copyPivots);
   /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty and spent
