@@ -608,6 +608,17 @@ TEST_CASE_TEMPLATE("splitting an update-matrix change samples the likely rank, t
                                                                       flops));
 }
 
+/** The dofs that \a llt eliminates at the permuted \a positions, in their order. */
+template <typename Solver>
+std::vector<int> dofsEliminatedAt(const Solver& llt, const std::vector<Index>& positions) {
+  std::vector<int> dofs(positions.size(), -1);
+  for (Index i = 0; i < llt.rows(); ++i)
+    for (std::size_t k = 0; k < positions.size(); ++k)
+      if (Index(llt.permutationP().indices()[i]) == positions[k]) dofs[k] = int(i);
+  for (int d : dofs) REQUIRE(d >= 0);
+  return dofs;
+}
+
 TEST_CASE_TEMPLATE("insertDofs folds below a refactored root (the previous factor extended with identity)", Cfg,
                    uctest::d_int_col_lower_amd) {
   // a copy of the dof eliminated last changes a column of the root supernode; a copy of the dof
@@ -626,15 +637,8 @@ TEST_CASE_TEMPLATE("insertDofs folds below a refactored root (the previous facto
   llt.compute(toInput<Cfg>(A0));
   REQUIRE(llt.info() == Eigen::Success);
   const Index n = A.rows();
-  int first = -1, last = -1;
-  for (Index i = 0; i < n; ++i) {
-    if (llt.permutationP().indices()[i] == 0) first = int(i);
-    if (llt.permutationP().indices()[i] == n - 1) last = int(i);
-  }
-  REQUIRE(first >= 0);
-  REQUIRE(last >= 0);
   std::mt19937 g(11);
-  const std::vector<int> origin = G.split({last, first}, g, true);
+  const std::vector<int> origin = G.split(dofsEliminatedAt(llt, {n - 1, 0}), g, true);  // (the last, the first)
   const FullMatrix Acut = G.template matrix<FullMatrix>();
   llt.setUpdateRoute(Eigen::UpdateRoute::Mixed);
   llt.insertDofs(toInput<Cfg>(Acut), origin);
@@ -672,13 +676,8 @@ TEST_CASE_TEMPLATE("insertDofs/mergeDofs fold a cut through the root separator i
     llt.compute(toInput<Cfg>(A0));
     REQUIRE(llt.info() == Eigen::Success);
     const Index n = A.rows();
-    std::vector<int> last(3, -1);
-    for (Index i = 0; i < n; ++i) {
-      const Index p = llt.permutationP().indices()[i];
-      if (p >= n - 3) last[std::size_t(p - (n - 3))] = int(i);
-    }
     std::mt19937 coin(11);
-    const std::vector<int> origin = G.split(last, coin, true);
+    const std::vector<int> origin = G.split(dofsEliminatedAt(llt, {n - 3, n - 2, n - 1}), coin, true);
     const FullMatrix Acut = G.template matrix<FullMatrix>();
     if (partial) llt.setUpdateRoute(Eigen::UpdateRoute::PartialRefactorization);
     llt.insertDofs(toInput<Cfg>(Acut), origin);

@@ -184,8 +184,9 @@ typename NumTraits<Scalar>::Real makeRotation(typename NumTraits<Scalar>::Real l
   * of RotationPanelColumns columns: a panel's rotations are made on its own rows, then applied
   * to the rows below one block of RotationRowBlock rows at a time, so that the block's rows of
   * the panel and of W stay in cache while all the panel's rotations pass over them (W and the
-  * block are read once per panel, not once per column and sign). \returns false on a lost pivot
-  * (the block is then partly changed); \a flops gets the work. */
+  * block are read once per panel, not once per column and sign). \a removed: flags by permuted
+  * row, or null (none). \returns false on a lost pivot (the block is then partly changed);
+  * \a flops gets the work. */
 template <typename Scalar, typename StorageIndex, typename Dense>
 bool signedRotationSweep(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count,
                          Index hyperbolicFrom, Index start, const char* removed, double& flops) {
@@ -204,7 +205,7 @@ bool signedRotationSweep(Supernode<Scalar, StorageIndex>& node, Dense& W, Index 
     const Index j1 = (std::min)(nc, j0 + Index(RotationPanelColumns));
     panel.clear();
     for (Index j = j0; j < j1; ++j) {  // the panel's rotations, applied to the panel's rows
-      if (removed[node.rows[j]]) continue;
+      if (removed && removed[node.rows[j]]) continue;
       Scalar* lj = L + j * nr;
       for (Index t = first; t < first + count; ++t) {
         Scalar* w = Wd + t * nr;

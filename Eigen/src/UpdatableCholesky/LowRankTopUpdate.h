@@ -505,12 +505,12 @@ void keptRowPositions(const StorageIndex* oldRows, Index count, const std::vecto
   * placeholder, and those passed up by its children on their previous rows, placed by their
   * previous relative positions), which leave the merged dofs' rows zero (up to rounding) and
   * their columns placeholders; then the block and the update matrix lose them. What is passed up
-  * stays on the previous rows below. \a zeros: removed flags by previous permuted row (none).
+  * stays on the previous rows below (merges fold so only without removed dofs).
   * \returns false on a lost pivot (the block is then partly changed). */
 template <typename Scalar, typename StorageIndex, typename Backup>
 bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
                          Index s, bool passUp, Backup& backup, const std::vector<StorageIndex>& newPosition,
-                         const char* zeros, UpdateWorkspace<Scalar>& ws, double& flops) {
+                         UpdateWorkspace<Scalar>& ws, double& flops) {
   auto& node = f.nodes[s];
   auto& U = numeric.cache()[s];
   auto previousStructure = [&]() {
@@ -520,29 +520,26 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
     U.swap(backup.cache[s]);
   };
   previousStructure();  // (the node now holds its previous rows, block and update matrix)
-  const bool ok = foldIntoSupernode(f, numeric, s, passUp, zeros, ws, flops, &backup.parentPosition);
+  const bool ok = foldIntoSupernode(f, numeric, s, passUp, static_cast<const char*>(nullptr), ws, flops,
+                                    &backup.parentPosition);
   const Index oldNr = node.nrows(), oldNc = node.ncols, oldM = oldNr - oldNc;
   std::vector<Index> kept;
   keptRowPositions(node.rows.data(), oldNr, newPosition, kept);
-  if (ok) {  // the deferred corrections lose the merged rows too (U does below)
-    Index nc = 0;
-    while (nc < Index(kept.size()) && kept[nc] < oldNc) ++nc;
-    for (auto& correction : numeric.pendingCorrections(s)) {
-      Matrix<Scalar, Dynamic, Dynamic> W(Index(kept.size()) - nc, correction.W.cols());
-      for (Index i = nc; i < Index(kept.size()); ++i) W.row(i - nc) = correction.W.row(kept[i] - oldNc);
-      correction.W.swap(W);
-    }
-  }
+  const Index nr = Index(kept.size());
+  Index nc = 0;  // (kept columns)
+  while (nc < nr && kept[nc] < oldNc) ++nc;
+  const Index m = nr - nc;
   Matrix<Scalar, Dynamic, Dynamic> block;
   UpdateBuffer<Scalar> cut;
-  if (ok) {
-    const Index nr = Index(kept.size());
-    Index nc = 0;
-    while (nc < nr && kept[nc] < oldNc) ++nc;
+  if (ok) {  // the block, the update matrix and its deferred corrections lose the merged dofs
+    for (auto& correction : numeric.pendingCorrections(s)) {
+      Matrix<Scalar, Dynamic, Dynamic> W(m, correction.W.cols());
+      for (Index i = 0; i < m; ++i) W.row(i) = correction.W.row(kept[nc + i] - oldNc);
+      correction.W.swap(W);
+    }
     block.resize(nr, nc);
     for (Index j = 0; j < nc; ++j)
       for (Index i = 0; i < nr; ++i) block(i, j) = node.values(kept[i], kept[j]);
-    const Index m = nr - nc;
     cut.resize(m * m);
     for (Index j = 0; j < m; ++j)
       for (Index i = j; i < m; ++i) cut[i + j * m] = U[(kept[nc + i] - oldNc) + (kept[nc + j] - oldNc) * oldM];
@@ -564,9 +561,8 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
   * (updateMatrixChange(), with the bounds of \a boundary), and the fold (foldIntoSupernode()),
   * with its own input change when ws holds one (a copy column's placeholder: \a pivotOf). With
   * \a merging, the changes are taken on the previous rows and a folded supernode that loses
-  * merged dofs is folded in its previous structure (foldMergedSupernode(); \a previousZeros:
-  * removed flags by previous permuted row, none). The folded supernodes whose previous block
-  * left \a backup are listed in \a taken.
+  * merged dofs is folded in its previous structure (foldMergedSupernode()). The folded
+  * supernodes whose previous block left \a backup are listed in \a taken.
   * \returns -1 on success, the column of a bad pivot of a refactorization, or -2 when a change
   * was not captured by its bound or a downdate lost a pivot (the caller then refactors every
   * dirty supernode: the folded ones are partly changed). \a flops gets the work. */
@@ -575,8 +571,7 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
                       const std::vector<Index>& dirty, const std::vector<char>& folded,
                       const std::vector<FoldBoundary>& boundary, Backup& backup, std::vector<Index>& taken,
                       const std::vector<StorageIndex>& newPosition, const char* removed, UpdateWorkspace<Scalar>& ws,
-                      Refactor&& refactor, PivotOf&& pivotOf, double& flops, bool merging = false,
-                      const char* previousZeros = nullptr) {
+                      Refactor&& refactor, PivotOf&& pivotOf, double& flops, bool merging = false) {
   std::vector<Index>& bound = ws.foldBound;  // 1 + position in boundary
   for (std::size_t k = 0; k < boundary.size(); ++k) bound[boundary[k].supernode] = Index(k) + 1;
   std::vector<Index> run, at;
@@ -621,7 +616,7 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
     if (captured && merging && Index(backup.rows[s].size()) != f.nodes[s].nrows()) {  // (it loses merged dofs)
       const Index p = f.parent[s];
       taken.push_back(s);  // (its previous block is consumed)
-      captured = foldMergedSupernode(f, numeric, s, p != -1 && folded[p], backup, newPosition, previousZeros, ws, flops);
+      captured = foldMergedSupernode(f, numeric, s, p != -1 && folded[p], backup, newPosition, ws, flops);
     } else if (captured) {
       auto& node = f.nodes[s];
       if (takePreviousBlock(node, backup.rows[s], backup.values[s], backup.cache[s], newPosition, at, numeric.cache()[s],

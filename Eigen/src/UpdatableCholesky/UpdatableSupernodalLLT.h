@@ -1525,7 +1525,6 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     spentFlops = 0;
     std::vector<std::pair<StorageIndex, RealScalar> > copyPivots;
     if (!change.merging || mergeFolds) splitOwnInputChanges(change, folded, copyPivots);
-    std::vector<char> previousZeros(mergeFolds ? std::size_t(oldN) : std::size_t(0), 0);  // (no removed dofs)
     auto pivotOf = [&copyPivots](Index column) {
       const auto it = std::lower_bound(copyPivots.begin(), copyPivots.end(), column,
                                        [](const std::pair<StorageIndex, RealScalar>& e, Index c) { return Index(e.first) < c; });
@@ -1536,7 +1535,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         m_factor, m_numeric, dirty, folded, boundary, backup, taken, change.relabel.newPosition, m_removedPermuted.data(),
         m_workspace,
         [&](const std::vector<Index>& list) { return m_numeric.refactorize(m_factor, numericInput(), list, threadCount()); },
-        pivotOf, spentFlops, mergeFolds, previousZeros.data());
+        pivotOf, spentFlops, mergeFolds);
     if (result != -2) return result;
     // a change not captured by its rank bound, or a downdate lost a pivot: refactor every dirty supernode instead
     for (Index s : dirty) m_numeric.discardCorrections(s);
