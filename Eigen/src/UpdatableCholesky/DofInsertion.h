@@ -40,8 +40,8 @@ struct DofRelabeling {
   std::vector<StorageIndex> oldPosition;  ///< new permuted -> old permuted, or -1 for a copy
   Index newSize = 0;
   Index firstMoved = 0;  ///< old permuted columns below this one keep their position
-  /** newPosition and oldPosition hold k at every k below this (kept by buildForCopies() between
-    * its calls, which then write only the rest) */
+  /** newPosition and oldPosition hold k at every k below this (kept by buildForCopies() and
+    * buildForDrops() between their calls, which then write only the rest) */
   Index identityPrefix = 0;
 
   /** build() for an insertion: nothing dropped, and copies is non-zero only at (some of) the old
@@ -73,27 +73,29 @@ struct DofRelabeling {
     identityPrefix = firstMoved;
   }
 
-  /** Fills newPosition and oldPosition from copies and the dropped flags (both by old permuted
-    * column; \a dropped null: none). */
-  void build(const char* dropped) {
-    identityPrefix = 0;
+  /** build() for a merge: the old permuted columns \a at (increasing, distinct) are dropped and
+    * no column gets copies. The columns up to the first of them keep their positions; the rest
+    * move down by the dropped ones before them, written run by run (one run between two dropped
+    * columns), in order. */
+  void buildForDrops(const std::vector<StorageIndex>& at) {
     const Index n = Index(copies.size());
+    newSize = n - Index(at.size());
+    firstMoved = at.empty() ? n : Index(at.front());
     newPosition.resize(n);
-    Index next = 0;
-    for (Index k = 0; k < n; ++k) {
-      if (dropped && dropped[k]) {
-        newPosition[k] = StorageIndex(-1);
-        continue;
+    oldPosition.resize(newSize);
+    StorageIndex* EIGEN_RESTRICT to = newPosition.data();
+    StorageIndex* EIGEN_RESTRICT from = oldPosition.data();
+    for (Index k = (std::min)(identityPrefix, firstMoved); k < firstMoved; ++k) to[k] = from[k] = StorageIndex(k);
+    for (std::size_t q = 0; q < at.size(); ++q) {
+      const Index dropped = Index(at[q]), shift = Index(q) + 1;
+      to[dropped] = StorageIndex(-1);
+      const Index end = q + 1 < at.size() ? Index(at[q + 1]) : n;
+      for (Index k = dropped + 1; k < end; ++k) {
+        to[k] = StorageIndex(k - shift);
+        from[k - shift] = StorageIndex(k);
       }
-      newPosition[k] = StorageIndex(next);
-      next += 1 + copies[k];
     }
-    newSize = next;
-    firstMoved = 0;
-    while (firstMoved < n && newPosition[firstMoved] == firstMoved) ++firstMoved;
-    oldPosition.assign(newSize, StorageIndex(-1));
-    for (Index k = 0; k < n; ++k)
-      if (newPosition[k] >= 0) oldPosition[newPosition[k]] = StorageIndex(k);
+    identityPrefix = firstMoved;
   }
 };
 

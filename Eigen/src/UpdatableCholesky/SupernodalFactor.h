@@ -109,13 +109,6 @@ struct SupernodalFactor {
     for (const Node& node : nodes) m = (std::max)(m, node.nrows());
     return m;
   }
-
-  /** The largest number of rows below any supernode. */
-  Index maxBelow() const {
-    Index m = 0;
-    for (const Node& node : nodes) m = (std::max)(m, node.below());
-    return m;
-  }
 };
 
 }  // namespace updatable_cholesky

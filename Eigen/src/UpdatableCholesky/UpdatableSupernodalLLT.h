@@ -373,7 +373,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     const Index k = x.cols();
     if (m_n == 0 || k == 0) return;
     const bool cached = m_solveCaching && k <= MaxCachedRightHandSides && !m_solveCacheBusy.exchange(true);
-    std::vector<Scalar> work(m_factor.maxRows() * k * (cached ? 2 : 1) + 1);
+    std::vector<Scalar> work(m_maxRows * k * (cached ? 2 : 1) + 1);
     if (cached) {
       m_solveCache.forward(m_factor, x.data(), x.rows(), k, work.data());
       m_lastSolveForwardColumns.store(m_solveCache.substitutedColumns());
@@ -391,11 +391,11 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     m_analysisIsOk = false;
     m_factorizationIsOk = false;
     m_n = 0;
+    m_maxRows = 0;
     m_shiftOffset = 0;
     m_shiftScale = 1;
     m_threads = 0;
     m_failedColumn = -1;
-    m_maxBelow = 0;
     m_sparseLIsValid = false;
   }
 
@@ -416,7 +416,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   SupernodeRelaxation m_relaxation;
   ComputationInfo m_info;
   bool m_analysisIsOk, m_factorizationIsOk;
-  Index m_n, m_failedColumn, m_maxBelow;
+  Index m_n, m_failedColumn;
+  Index m_maxRows;  ///< at least the rows of any supernode (the solve's workspace), kept by the updates
   RealScalar m_shiftOffset, m_shiftScale;
   int m_threads;
   mutable CholMatrixType m_sparseL;
@@ -469,6 +470,16 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     std::vector<StorageIndex> touched;    ///< current dofs dirty in any case (origins, merged)
     std::vector<StorageIndex> placed;     ///< insertion: copies placed per old permuted column, 0 between calls
     std::vector<StorageIndex> originsAt;  ///< insertion: the origins' old permuted columns, increasing, once each
+    std::vector<StorageIndex> merged;        ///< merge: the merged dofs, increasing
+    std::vector<StorageIndex> mergedTarget;  ///< merge: the new dof each of them merges into
+    std::vector<StorageIndex> droppedAt;     ///< merge: the merged dofs' old permuted columns, increasing
+    Index firstMerged = 0;  ///< merge: the first merged dof (n if none); newOfOld is the identity below it
+    /** merge: the new dof that current dof \a i becomes or merges into */
+    Index keptOf(Index i) const {
+      if (newOfOld[i] >= 0) return newOfOld[i];
+      const auto it = std::lower_bound(merged.begin(), merged.end(), StorageIndex(i));
+      return mergedTarget[it - merged.begin()];
+    }
     std::vector<StorageIndex> previousRemoved;  ///< the removed dofs before the call (for a revert)
     internal::updatable_cholesky::DofRelabeling<StorageIndex> relabel;
     bool merging = false;
@@ -481,6 +492,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     Index bytes() const {
       return Index((oldOfNew.capacity() + newOfOld.capacity() + preStart.capacity() + preList.capacity() +
                     touched.capacity() + placed.capacity() + originsAt.capacity() + previousRemoved.capacity() +
+                    merged.capacity() + mergedTarget.capacity() + droppedAt.capacity() +
                     relabel.newPosition.capacity() +
                     relabel.copies.capacity() + relabel.oldPosition.capacity() + newPerm.size() + newPinv.size()) *
                    sizeof(StorageIndex));
@@ -489,6 +501,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   /** Scratch of insertDofs() and of mergeDofs(), kept so that their arrays are reused: an
     * insertion's renumbering is the identity on the old dofs, which its arrays keep between calls. */
   DofChange m_insertChange, m_mergeChange;
+  std::vector<std::pair<StorageIndex, StorageIndex> > m_mergeInto;  ///< mergeDofs() scratch
   internal::updatable_cholesky::FactorStructureBackup<Scalar, StorageIndex> m_structureBackup;  ///< their revert
   void replaceDofs(const MatrixType& matrix, DofChange& change);
   /** insertDofs() with the outer vectors to compare given by m_insertChange (compareAll, hint). */
@@ -609,7 +622,6 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   m_factor.build(partition);
   buildAssemblyMaps(lower, m_factor);
   m_numeric.reset();
-  m_maxBelow = m_factor.maxBelow();
 
   m_P.resize(n);
   for (Index i = 0; i < n; ++i) m_P.indices()[i] = perm[i];
@@ -618,6 +630,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   m_removedOriginal.assign(n, 0);
   m_workspace.resize(m_factor.count());
   m_totalFlops = m_factor.flops();
+  m_maxRows = m_factor.maxRows();
   m_removedList.clear();
   m_info = Success;
   m_analysisIsOk = true;
@@ -1023,46 +1036,90 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     const MatrixType& a, const Indices& origin) {
   if (!beginUpdate()) return *this;
   const Index n = m_n;
+  DofChange& change = m_mergeChange;
+  std::vector<StorageIndex>& merged = change.merged;
+  merged.clear();
   bool ok = Index(origin.size()) == n;
-  Index total = 0;
   for (Index i = 0; ok && i < n; ++i) {
     const Index o = Index(origin[i]);
     ok = o >= 0 && o < n && (o == i || Index(origin[o]) == o);
-    total += o == i;
+    if (o != i) merged.push_back(StorageIndex(i));
   }
+  const Index total = n - Index(merged.size());
   if (!ok || a.rows() != a.cols() || a.rows() != total) {
     m_info = InvalidInput;
     return *this;
   }
-  DofChange& change = m_mergeChange;
   change.merging = true;
   change.touched.clear();
+  // the kept dofs keep their order; below the first merged dof, their numbers. The arrays keep
+  // the identity prefix between merges (identityLength), so only the rest is written
+  const Index firstMerged = merged.empty() ? n : Index(merged.front());
+  change.firstMerged = firstMerged;
   change.oldOfNew.resize(total);
-  change.newOfOld.assign(n, StorageIndex(-1));
-  std::vector<char> dropped(n, 0);
-  for (Index i = 0, next = 0; i < n; ++i) {
-    const Index o = Index(origin[i]);
-    if (o == i) {
-      change.newOfOld[i] = StorageIndex(next);
-      change.oldOfNew[next++] = StorageIndex(i);
-    } else {
-      dropped[m_P.indices()[i]] = 1;
-      change.touched.push_back(StorageIndex(i));
-      change.touched.push_back(StorageIndex(o));
-    }
+  change.newOfOld.resize(n);
+  for (Index i = (std::min)(change.identityLength, firstMerged); i < firstMerged; ++i)
+    change.oldOfNew[i] = change.newOfOld[i] = StorageIndex(i);
+  for (Index i = firstMerged, next = firstMerged; i < n; ++i) {
+    const bool kept = Index(origin[i]) == i;
+    change.newOfOld[i] = kept ? StorageIndex(next) : StorageIndex(-1);
+    if (kept) change.oldOfNew[next++] = StorageIndex(i);
   }
-  // each kept dof stands for itself and the dofs merged into it
-  change.preStart.assign(total + 1, 0);
-  for (Index i = 0; i < n; ++i) ++change.preStart[change.newOfOld[Index(origin[i])] + 1];
-  for (Index x = 0; x < total; ++x) change.preStart[x + 1] += change.preStart[x];
+  const StorageIndex* perm = m_P.indices().data();
+  change.mergedTarget.resize(merged.size());
+  change.droppedAt.resize(merged.size());
+  std::vector<std::pair<StorageIndex, StorageIndex> >& into = m_mergeInto;  // (kept new dof, merged dof)
+  into.resize(merged.size());
+  Index prefix = firstMerged;  // the four arrays are the identity below it
+  for (std::size_t k = 0; k < merged.size(); ++k) {
+    const StorageIndex i = merged[k], o = StorageIndex(origin[i]), x = change.newOfOld[o];
+    change.mergedTarget[k] = x;
+    change.droppedAt[k] = perm[i];
+    into[k] = std::make_pair(x, i);
+    prefix = (std::min)(prefix, Index(x));
+    change.touched.push_back(i);
+    change.touched.push_back(o);
+  }
+  std::sort(into.begin(), into.end());
+  std::sort(change.droppedAt.begin(), change.droppedAt.end());
+  // each kept dof stands for itself and the dofs merged into it, in increasing order
+  change.preStart.resize(total + 1);
   change.preList.resize(n);
-  std::vector<StorageIndex> fill(change.preStart.begin(), change.preStart.end() - 1);
-  for (Index i = 0; i < n; ++i) change.preList[fill[change.newOfOld[Index(origin[i])]]++] = StorageIndex(i);
+  for (Index x = (std::min)(change.identityLength, prefix); x < prefix; ++x)
+    change.preStart[x] = change.preList[x] = StorageIndex(x);
+  {
+    Index at = prefix;
+    std::size_t q = 0;
+    for (Index x = prefix; x < total; ++x) {
+      change.preStart[x] = StorageIndex(at);
+      const StorageIndex own = change.oldOfNew[x];
+      for (; q < into.size() && into[q].first == x && into[q].second < own; ++q) change.preList[at++] = into[q].second;
+      change.preList[at++] = own;
+      for (; q < into.size() && into[q].first == x; ++q) change.preList[at++] = into[q].second;
+    }
+    change.preStart[total] = StorageIndex(at);
+  }
+  change.identityLength = prefix;
   auto& relabel = change.relabel;
-  relabel.copies.assign(n, 0);
-  relabel.build(dropped.data());
+  relabel.copies.resize(n, 0);  // (a merge makes no copies: zero, always)
+  relabel.buildForDrops(change.droppedAt);
+  // the new permutation: each kept dof's column moves down by the dropped columns before it;
+  // with few of them, by compares in one pass in order rather than a load at a random place
   change.newPerm.resize(total);
-  for (Index x = 0; x < total; ++x) change.newPerm[x] = relabel.newPosition[m_P.indices()[change.oldOfNew[x]]];
+  enum { FewDrops = 8 };
+  if (change.droppedAt.size() <= std::size_t(FewDrops)) {
+    StorageIndex bound[FewDrops];
+    for (Index q = 0; q < Index(FewDrops); ++q)
+      bound[q] = q < Index(change.droppedAt.size()) ? change.droppedAt[q] : NumTraits<StorageIndex>::highest();
+    for (Index x = 0; x < total; ++x) {
+      const StorageIndex p = perm[change.oldOfNew[x]];
+      StorageIndex shift = 0;
+      for (Index q = 0; q < Index(FewDrops); ++q) shift += p > bound[q] ? StorageIndex(1) : StorageIndex(0);
+      change.newPerm[x] = p - shift;
+    }
+  } else {
+    for (Index x = 0; x < total; ++x) change.newPerm[x] = relabel.newPosition[perm[change.oldOfNew[x]]];
+  }
   change.layoutReady = true;
   if (!change.compareAll) collectCompared(change, total);
   replaceDofs(a, change);
@@ -1099,10 +1156,7 @@ const std::vector<typename MatrixType_::StorageIndex>& UpdatableSupernodalLLT<Ma
     gluingMismatches<rowMajor>(m_store, newRanges, [&change](Index x) { return Index(change.preList[x]); },
                                previous, oldRanges, diff.mismatch, diff.mismatchList, diff.gluing);
   } else {  // the previous matrix is cut: each previous dof glues onto the kept dof it stands for
-    std::vector<StorageIndex> keptOf(n);
-    for (Index x = 0; x < total; ++x)
-      for (Index p = change.preStart[x]; p < change.preStart[x + 1]; ++p) keptOf[change.preList[p]] = StorageIndex(x);
-    gluingMismatches<rowMajor>(previous, oldRanges, [&keptOf](Index i) { return Index(keptOf[i]); }, m_store,
+    gluingMismatches<rowMajor>(previous, oldRanges, [&change](Index i) { return change.keptOf(i); }, m_store,
                                newRanges, diff.mismatch, diff.mismatchList, diff.gluing);
   }
   return diff.mismatchList;
@@ -1306,18 +1360,31 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   auto markPath = [&](Index s) { markPathToRoot(m_factor, s, mark, dirty); };
   for (StorageIndex o : diff.changedList) markPath(m_factor.colToSuper[perm[o]]);
   for (StorageIndex o : change.touched) markPath(m_factor.colToSuper[perm[o]]);
-  if (change.merging)
-    for (Index s = 0; s < m_factor.count(); ++s) {
-      Index keptColumns = 0, droppedRows = 0;
-      const auto& node = m_factor.nodes[s];
-      for (Index k = 0; k < node.nrows(); ++k) {
-        const bool gone = change.relabel.newPosition[node.rows[k]] < 0;
-        droppedRows += gone;
-        keptColumns += k < node.ncols && !gone;
+  if (change.merging) {
+    // the supernodes that lose a merged dof's row: every one that holds it below its columns lies
+    // under the supernode of its column, and so do all between them (a row passes from child to
+    // parent): found from that supernode down, each child that does not hold it ending the search
+    std::vector<Index> below;
+    for (StorageIndex d : change.droppedAt) {
+      const Index own = m_factor.colToSuper[d];
+      for (Index c = m_factor.firstChild[own]; c != -1; c = m_factor.nextSibling[c]) below.push_back(c);
+      while (!below.empty()) {
+        const Index c = below.back();
+        below.pop_back();
+        const auto& node = m_factor.nodes[c];
+        if (!std::binary_search(node.rows.begin() + node.ncols, node.rows.end(), d)) continue;
+        markPath(c);
+        for (Index g = m_factor.firstChild[c]; g != -1; g = m_factor.nextSibling[g]) below.push_back(g);
       }
-      if (droppedRows > 0) markPath(s);
-      ok = ok && keptColumns > 0;  // a supernode may not lose all its columns
     }
+    // a supernode may not lose all its columns (the dropped columns are increasing: a supernode's are consecutive)
+    for (std::size_t k = 0; k < change.droppedAt.size() && ok;) {
+      const Index own = m_factor.colToSuper[change.droppedAt[k]];
+      std::size_t lost = 0;
+      for (; k < change.droppedAt.size() && m_factor.colToSuper[change.droppedAt[k]] == own; ++k) ++lost;
+      ok = Index(lost) < m_factor.nodes[own].ncols;
+    }
+  }
   std::sort(dirty.begin(), dirty.end());
   if (!ok) {
     for (Index s : dirty) mark[s] = 0;
@@ -1375,24 +1442,20 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     change.newPinv.resize(total);
     for (Index j = 0; j < total; ++j) {
       const StorageIndex k = change.relabel.oldPosition[j];
-      change.newPinv[j] = k < 0 ? StorageIndex(-1) : change.merging ? change.newOfOld[oldPinv[k]] : oldPinv[k];
+      const StorageIndex o = k < 0 ? StorageIndex(-1) : oldPinv[k];  // (a merge: the identity below its first merged dof)
+      change.newPinv[j] = o < 0 || !change.merging || o < change.firstMerged ? o : change.newOfOld[o];
     }
     for (Index x = n; x < total; ++x) change.newPinv[change.newPerm[x]] = StorageIndex(x);  // the copies
     m_P.indices().swap(change.newPerm);
     m_Pinv.indices().swap(change.newPinv);
   }
-  const Index oldN = m_n, oldMaxBelow = m_maxBelow;
+  const Index oldN = m_n, oldMaxRows = m_maxRows;
   const double oldTotalFlops = m_totalFlops;
   m_n = total;
-  if (change.merging) {
-    m_maxBelow = m_factor.maxBelow();
-    m_totalFlops = m_factor.flops();
-  } else {  // an insertion only adds rows and columns to the dirty supernodes
-    for (Index s : dirty) {
-      const auto& node = m_factor.nodes[s];
-      m_maxBelow = (std::max)(m_maxBelow, node.below());
-      m_totalFlops += node.flops() - node.flopsOf(backup.ncols[s], Index(backup.rows[s].size()) - backup.ncols[s]);
-    }
+  for (Index s : dirty) {  // (only the dirty supernodes gain or lose rows and columns; after a merge,
+    const auto& node = m_factor.nodes[s];  // m_maxRows may be more than needed)
+    m_maxRows = (std::max)(m_maxRows, node.nrows());
+    m_totalFlops += node.flops() - node.flopsOf(backup.ncols[s], Index(backup.rows[s].size()) - backup.ncols[s]);
   }
   m_numeric.structureChanged();
 
@@ -1566,7 +1629,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       buildAssemblyMaps(lower, m_factor);
     }
     m_n = oldN;
-    m_maxBelow = oldMaxBelow;
+    m_maxRows = oldMaxRows;
     m_totalFlops = oldTotalFlops;
     m_numeric.structureChanged();
     for (Index s : dirty) m_numeric.discardCorrections(s);
