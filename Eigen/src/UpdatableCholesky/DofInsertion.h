@@ -249,18 +249,21 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
   backup.values.resize(ns);
   backup.cache.resize(ns);
   for (Index s = 0; s < ns; ++s) {
+    // a clean supernode wholly below the first moved column stays as it is, unread (backup.firstCol
+    // and backup.ncols are written for the dirty supernodes only)
+    if (!mark[s] && Index(f.lastRow[s]) < relabel.firstMoved) continue;
     auto& node = f.nodes[s];
-    backup.firstCol[s] = node.firstCol;
-    backup.ncols[s] = node.ncols;
     if (!mark[s]) {  // (rows are increasing: those before the first moved column stay)
       const Index nr = node.nrows();
       StorageIndex* EIGEN_RESTRICT rows = node.rows.data();
       const StorageIndex* EIGEN_RESTRICT to = relabel.newPosition.data();
-      const Index from = nr > 0 && Index(rows[0]) >= relabel.firstMoved
+      const Index from = Index(rows[0]) >= relabel.firstMoved
                              ? Index(0)
                              : Index(std::lower_bound(rows, rows + nr, StorageIndex(relabel.firstMoved)) - rows);
       for (Index k = from; k < nr; ++k) rows[k] = to[rows[k]];
     } else {
+      backup.firstCol[s] = node.firstCol;
+      backup.ncols[s] = node.ncols;
       backup.rows[s].swap(node.rows);
       backup.values[s].swap(node.values);
       if (Index(cache.size()) == ns) backup.cache[s].swap(cache[s]);
@@ -279,11 +282,14 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
       if (Index(cache.size()) == ns) backup.takeSpare(node.below() * node.below(), cache[s]);
     }
     node.firstCol = node.ncols > 0 ? Index(node.rows[0]) : 0;
+    f.lastRow[s] = node.rows.empty() ? StorageIndex(-1) : node.rows.back();
   }
   f.n = relabel.newSize;
   f.colToSuper.resize(f.n);  // one pass in order: a copy belongs to the supernode of its origin
-  StorageIndex owner = -1;
-  for (Index j = 0; j < f.n; ++j) {
+  const Index unmoved = (std::min)(relabel.firstMoved, f.n);  // (the columns below keep their supernode)
+  std::copy(backup.colToSuper.begin(), backup.colToSuper.begin() + unmoved, f.colToSuper.begin());
+  StorageIndex owner = unmoved > 0 ? f.colToSuper[unmoved - 1] : StorageIndex(-1);
+  for (Index j = unmoved; j < f.n; ++j) {
     const StorageIndex k = relabel.oldPosition[j];
     if (k >= 0) owner = backup.colToSuper[k];
     f.colToSuper[j] = owner;
@@ -312,16 +318,19 @@ void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
                    FactorStructureBackup<Scalar, StorageIndex>& backup) {
   const Index ns = f.count();
   for (Index s = 0; s < ns; ++s) {
+    if (!mark[s] && Index(f.lastRow[s]) < relabel.firstMoved) continue;  // (relabelFactor() left it as it was)
     auto& node = f.nodes[s];
-    node.firstCol = backup.firstCol[s];
-    node.ncols = backup.ncols[s];
     if (!mark[s]) {
       for (auto& r : node.rows) r = relabel.oldPosition[r];
+      node.firstCol = node.ncols > 0 ? Index(node.rows[0]) : 0;
     } else {
+      node.firstCol = backup.firstCol[s];
+      node.ncols = backup.ncols[s];
       node.rows.swap(backup.rows[s]);
       node.values.swap(backup.values[s]);
       if (Index(cache.size()) == ns) cache[s].swap(backup.cache[s]);
     }
+    f.lastRow[s] = node.rows.empty() ? StorageIndex(-1) : node.rows.back();
   }
   for (Index p = 0; p < ns; ++p) {
     if (!mark[p]) continue;

@@ -49,6 +49,9 @@ struct SupernodalFactor {
   std::vector<StorageIndex> firstChild, nextSibling;  ///< children lists in increasing order
   std::vector<StorageIndex> firstDescendant;          ///< subtree of s = [firstDescendant[s], s]
   std::vector<StorageIndex> colToSuper;
+  /** The last row of each supernode (kept by the renumberings of insertDofs()/mergeDofs(), which
+    * skip the supernodes that lie wholly below the first column that moves without reading them). */
+  std::vector<StorageIndex> lastRow;
 
   Index count() const { return Index(nodes.size()); }
 
@@ -77,6 +80,8 @@ struct SupernodalFactor {
       node.ncols = part.start[s + 1] - part.start[s];
       node.rows.assign(part.rowIdx.begin() + part.rowPtr[s], part.rowIdx.begin() + part.rowPtr[s + 1]);
     }
+    lastRow.resize(ns);
+    for (Index s = 0; s < ns; ++s) lastRow[s] = nodes[s].rows.empty() ? StorageIndex(-1) : nodes[s].rows.back();
     std::vector<StorageIndex> position(n, StorageIndex(-1));
     for (Index p = 0; p < ns; ++p) {
       const Node& pn = nodes[p];
