@@ -867,10 +867,12 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   if (!beginUpdate()) return *this;
   const Index n = m_n, total = Index(origin.size());
   bool ok = a.rows() == a.cols() && a.rows() == total && total >= n;
-  for (Index i = 0; ok && i < total; ++i) {
-    const Index o = Index(origin[i]);
-    ok = i < n ? o == i : (o >= 0 && o < n);
+  if (ok) {  // (counted without an early exit, so that the pass over the old dofs vectorizes)
+    Index moved = 0;
+    for (Index i = 0; i < n; ++i) moved += Index(origin[i]) != i;
+    ok = moved == 0;
   }
+  for (Index i = n; ok && i < total; ++i) ok = Index(origin[i]) >= 0 && Index(origin[i]) < n;
   if (!ok) {
     m_info = InvalidInput;
     return *this;
@@ -1440,7 +1442,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   {
     const StorageIndex* oldPinv = m_Pinv.indices().data();
     change.newPinv.resize(total);
-    for (Index j = 0; j < total; ++j) {
+    const Index unmoved = (std::min)(change.relabel.firstMoved, total);  // (below it, nothing moves;
+    for (Index j = 0; j < unmoved; ++j)                                  // a merge's dofs keep their number
+      change.newPinv[j] = !change.merging || oldPinv[j] < change.firstMerged ? oldPinv[j] : change.newOfOld[oldPinv[j]];
+    for (Index j = unmoved; j < total; ++j) {
       const StorageIndex k = change.relabel.oldPosition[j];
       const StorageIndex o = k < 0 ? StorageIndex(-1) : oldPinv[k];  // (a merge: the identity below its first merged dof)
       change.newPinv[j] = o < 0 || !change.merging || o < change.firstMerged ? o : change.newOfOld[o];
