@@ -156,12 +156,14 @@ struct InputDiff {
   * fills \a d (changed, posMap, fresh). \a allowed(x, y) is asked about each fresh off-diagonal
   * entry (new numbering); a false answer stops the comparison with false and the store unchanged.
   * \a only (sorted, new numbering; null: all): when the store is rewritten in place, the only
-  * outer vectors that may differ; the others are taken as equal without being read. */
+  * outer vectors that may differ; the others are taken as equal without being read.
+  * \a keptBelow: the dofs below it are known to keep their numbers (none merged away), so
+  * neither renumbering nor merged dofs are looked for among them (0: not known). */
 template <int UpLo, bool RowMajor, typename Scalar, typename StorageIndex, typename Allowed>
 bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* outer, const StorageIndex* inner,
                const Scalar* values, Index total, const std::vector<StorageIndex>& oldOfNew,
                const std::vector<StorageIndex>& newOfOld, InputDiff<Scalar, StorageIndex>& d, Allowed&& allowed,
-               const std::vector<StorageIndex>* only = nullptr) {
+               const std::vector<StorageIndex>* only = nullptr, Index keptBelow = 0) {
   const Index n = store.outerSize();
   d.changed.assign(n, 0);
   d.changedList.clear();
@@ -177,7 +179,7 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
   d.rewrites.clear();
   if (!d.posMapIsIdentity || Index(d.posMap.size()) != Index(store.inner.size())) d.resetPositions(store);
   // kept dofs below this one keep their index (all old ones for an insertion)
-  Index identityBelow = 0;
+  Index identityBelow = (std::min)(keptBelow, (std::min)(n, total));
   while (identityBelow < total && oldOfNew[identityBelow] == identityBelow) ++identityBelow;
   d.inPlace = identityBelow >= (std::min)(n, total) && !store.wasteful();
   d.oldPool = Index(store.inner.size());
@@ -296,7 +298,7 @@ bool diffInput(InputStore<Scalar, StorageIndex>& store, const StorageIndex* oute
       d.stamp[y] = -1;
     }
   }
-  for (Index o = 0; o < n; ++o) {  // merged dofs: every entry of theirs is gone
+  for (Index o = (std::min)(keptBelow, n); o < n; ++o) {  // merged dofs: every entry of theirs is gone
     if (newOfOld[o] >= 0) continue;
     setChanged(o);
     for (Index q = store.begin[o]; q < store.end[o]; ++q) {

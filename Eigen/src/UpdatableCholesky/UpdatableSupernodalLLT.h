@@ -1330,7 +1330,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   };
   InputDiff<Scalar, StorageIndex>& diff = m_inputDiff;
   if (!diffInput<UpLo_, rowMajor>(m_store, outer, inner, values, total, change.oldOfNew, change.newOfOld, diff,
-                                  foldAllowed, change.compareAll ? nullptr : &change.compared)) {  // (the store is as it was)
+                                  foldAllowed, change.compareAll ? nullptr : &change.compared,
+                                  change.merging ? change.firstMerged : n)) {  // (the store is as it was)
     m_info = diff.nonFinite >= 0 ? NumericalIssue : InvalidInput;  // (NaN or infinity: as compute() says)
     if (diff.nonFinite >= 0) m_failedColumn = diff.nonFinite;
     return;
