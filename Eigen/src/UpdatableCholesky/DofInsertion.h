@@ -43,6 +43,34 @@ struct DofRelabeling {
   /** newPosition and oldPosition hold k at every k below this (kept by buildForCopies() and
     * buildForDrops() between their calls, which then write only the rest) */
   Index identityPrefix = 0;
+  /** When the relabeling has at most MaxSteps steps (old columns that get copies, or that are
+    * dropped): kept old column k moves to k + the stepShift of every step with stepAt < k;
+    * steps < 0 when there are more. */
+  enum { MaxSteps = 8 };
+  StorageIndex stepAt[MaxSteps], stepShift[MaxSteps];
+  Index steps = -1;
+
+  /** out[i] = the new position of the kept old column oldColumn(i), for i < count. With few
+    * steps, by compares in one pass in order (they vectorize), rather than a load from
+    * newPosition at a random place per column. */
+  template <typename OldColumn>
+  void newPositionsOf(Index count, OldColumn&& oldColumn, StorageIndex* EIGEN_RESTRICT out) const {
+    if (steps < 0) {
+      for (Index i = 0; i < count; ++i) out[i] = newPosition[oldColumn(i)];
+      return;
+    }
+    StorageIndex at[MaxSteps], shift[MaxSteps];  // (unused steps: never passed, add nothing)
+    for (Index q = 0; q < Index(MaxSteps); ++q) {
+      at[q] = q < steps ? stepAt[q] : NumTraits<StorageIndex>::highest();
+      shift[q] = q < steps ? stepShift[q] : StorageIndex(0);
+    }
+    for (Index i = 0; i < count; ++i) {
+      const StorageIndex k = StorageIndex(oldColumn(i));
+      StorageIndex moved = 0;
+      for (Index q = 0; q < Index(MaxSteps); ++q) moved += k > at[q] ? shift[q] : StorageIndex(0);
+      out[i] = k + moved;
+    }
+  }
 
   /** build() for an insertion: nothing dropped, and copies is non-zero only at (some of) the old
     * permuted columns \a at (increasing, distinct). The columns up to the first of them keep
@@ -59,6 +87,7 @@ struct DofRelabeling {
     StorageIndex* EIGEN_RESTRICT to = newPosition.data();
     StorageIndex* EIGEN_RESTRICT from = oldPosition.data();
     for (Index k = (std::min)(identityPrefix, firstMoved); k < firstMoved; ++k) to[k] = from[k] = StorageIndex(k);
+    recordSteps(at, [&](Index q) { return copies[at[q]]; });
     shift = 0;
     for (std::size_t q = 0; q < at.size(); ++q) {
       const Index origin = Index(at[q]), count = Index(copies[origin]);
@@ -86,6 +115,7 @@ struct DofRelabeling {
     StorageIndex* EIGEN_RESTRICT to = newPosition.data();
     StorageIndex* EIGEN_RESTRICT from = oldPosition.data();
     for (Index k = (std::min)(identityPrefix, firstMoved); k < firstMoved; ++k) to[k] = from[k] = StorageIndex(k);
+    recordSteps(at, [](Index) { return -1; });
     for (std::size_t q = 0; q < at.size(); ++q) {
       const Index dropped = Index(at[q]), shift = Index(q) + 1;
       to[dropped] = StorageIndex(-1);
@@ -96,6 +126,16 @@ struct DofRelabeling {
       }
     }
     identityPrefix = firstMoved;
+  }
+
+ private:
+  template <typename Shift>
+  void recordSteps(const std::vector<StorageIndex>& at, Shift&& shiftOf) {
+    steps = Index(at.size()) <= Index(MaxSteps) ? Index(at.size()) : Index(-1);
+    for (Index q = 0; q < steps; ++q) {
+      stepAt[q] = at[q];
+      stepShift[q] = StorageIndex(shiftOf(q));
+    }
   }
 };
 
@@ -282,7 +322,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
       if (Index(cache.size()) == ns) backup.takeSpare(node.below() * node.below(), cache[s]);
     }
     node.firstCol = node.ncols > 0 ? Index(node.rows[0]) : 0;
-    f.lastRow[s] = node.rows.empty() ? StorageIndex(-1) : node.rows.back();
+    f.noteLastRow(s);
   }
   f.n = relabel.newSize;
   f.colToSuper.resize(f.n);  // one pass in order: a copy belongs to the supernode of its origin
@@ -330,7 +370,7 @@ void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
       node.values.swap(backup.values[s]);
       if (Index(cache.size()) == ns) cache[s].swap(backup.cache[s]);
     }
-    f.lastRow[s] = node.rows.empty() ? StorageIndex(-1) : node.rows.back();
+    f.noteLastRow(s);
   }
   for (Index p = 0; p < ns; ++p) {
     if (!mark[p]) continue;

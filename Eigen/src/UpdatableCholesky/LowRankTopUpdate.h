@@ -505,12 +505,12 @@ void keptRowPositions(const StorageIndex* oldRows, Index count, const std::vecto
   * placeholder, and those passed up by its children on their previous rows, placed by their
   * previous relative positions), which leave the merged dofs' rows zero (up to rounding) and
   * their columns placeholders; then the block and the update matrix lose them. What is passed up
-  * stays on the previous rows below (merges fold so only without removed dofs).
+  * stays on the previous rows below (merges fold so only without removed dofs). \a kept: scratch.
   * \returns false on a lost pivot (the block is then partly changed). */
 template <typename Scalar, typename StorageIndex, typename Backup>
 bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
                          Index s, bool passUp, Backup& backup, const std::vector<StorageIndex>& newPosition,
-                         UpdateWorkspace<Scalar>& ws, double& flops) {
+                         UpdateWorkspace<Scalar>& ws, std::vector<Index>& kept, double& flops) {
   auto& node = f.nodes[s];
   auto& U = numeric.cache()[s];
   auto previousStructure = [&]() {
@@ -523,7 +523,6 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
   const bool ok = foldIntoSupernode(f, numeric, s, passUp, static_cast<const char*>(nullptr), ws, flops,
                                     &backup.parentPosition);
   const Index oldNr = node.nrows(), oldNc = node.ncols, oldM = oldNr - oldNc;
-  std::vector<Index> kept;
   keptRowPositions(node.rows.data(), oldNr, newPosition, kept);
   const Index nr = Index(kept.size());
   Index nc = 0;  // (kept columns)
@@ -616,7 +615,7 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
     if (captured && merging && Index(backup.rows[s].size()) != f.nodes[s].nrows()) {  // (it loses merged dofs)
       const Index p = f.parent[s];
       taken.push_back(s);  // (its previous block is consumed)
-      captured = foldMergedSupernode(f, numeric, s, p != -1 && folded[p], backup, newPosition, ws, flops);
+      captured = foldMergedSupernode(f, numeric, s, p != -1 && folded[p], backup, newPosition, ws, at, flops);
     } else if (captured) {
       auto& node = f.nodes[s];
       if (takePreviousBlock(node, backup.rows[s], backup.values[s], backup.cache[s], newPosition, at, numeric.cache()[s],

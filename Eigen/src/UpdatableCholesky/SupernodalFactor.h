@@ -55,6 +55,9 @@ struct SupernodalFactor {
 
   Index count() const { return Index(nodes.size()); }
 
+  /** Sets lastRow[s] from supernode s's rows (after they changed). */
+  void noteLastRow(Index s) { lastRow[s] = nodes[s].rows.empty() ? StorageIndex(-1) : nodes[s].rows.back(); }
+
   /** Builds the supernodes from a partition (values left empty). */
   void build(const SupernodalPartition<StorageIndex>& part) {
     const Index ns = part.count();
@@ -81,7 +84,7 @@ struct SupernodalFactor {
       node.rows.assign(part.rowIdx.begin() + part.rowPtr[s], part.rowIdx.begin() + part.rowPtr[s + 1]);
     }
     lastRow.resize(ns);
-    for (Index s = 0; s < ns; ++s) lastRow[s] = nodes[s].rows.empty() ? StorageIndex(-1) : nodes[s].rows.back();
+    for (Index s = 0; s < ns; ++s) noteLastRow(s);
     std::vector<StorageIndex> position(n, StorageIndex(-1));
     for (Index p = 0; p < ns; ++p) {
       const Node& pn = nodes[p];

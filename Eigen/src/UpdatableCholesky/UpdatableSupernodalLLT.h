@@ -984,26 +984,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildInsertionLayout
   // each copy right after its origin, copies of one origin in increasing order
   change.newPerm.resize(total);
   change.placed.resize(n, 0);  // (zero between calls)
-  StorageIndex* EIGEN_RESTRICT newPerm = change.newPerm.data();
-  enum { FewOrigins = 8 };
-  if (Index(at.size()) <= Index(FewOrigins)) {
-    // the old dofs: p + the copies of the origins before p. With few origins, compares in one
-    // pass in order (vectorized) beat a lookup at a random place of newPosition per dof
-    StorageIndex bound[FewOrigins], count[FewOrigins];
-    for (Index q = 0; q < Index(FewOrigins); ++q) {
-      const bool used = q < Index(at.size());
-      bound[q] = used ? at[q] : NumTraits<StorageIndex>::highest();
-      count[q] = used ? relabel.copies[at[q]] : StorageIndex(0);
-    }
-    for (Index i = 0; i < n; ++i) {
-      const StorageIndex p = perm[i];
-      StorageIndex shift = 0;
-      for (Index q = 0; q < Index(FewOrigins); ++q) shift += p > bound[q] ? count[q] : StorageIndex(0);
-      newPerm[i] = p + shift;
-    }
-  } else {
-    for (Index i = 0; i < n; ++i) newPerm[i] = relabel.newPosition[perm[i]];
-  }
+  relabel.newPositionsOf(n, [perm](Index i) { return perm[i]; }, change.newPerm.data());  // (the old dofs)
   for (Index i = n; i < total; ++i) {
     const StorageIndex po = perm[change.preList[i]];
     change.newPerm[i] = StorageIndex(relabel.newPosition[po] + 1 + change.placed[po]++);
@@ -1105,23 +1086,10 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   auto& relabel = change.relabel;
   relabel.copies.resize(n, 0);  // (a merge makes no copies: zero, always)
   relabel.buildForDrops(change.droppedAt);
-  // the new permutation: each kept dof's column moves down by the dropped columns before it;
-  // with few of them, by compares in one pass in order rather than a load at a random place
+  // the new permutation: each kept dof's column moves down by the dropped columns before it
   change.newPerm.resize(total);
-  enum { FewDrops = 8 };
-  if (change.droppedAt.size() <= std::size_t(FewDrops)) {
-    StorageIndex bound[FewDrops];
-    for (Index q = 0; q < Index(FewDrops); ++q)
-      bound[q] = q < Index(change.droppedAt.size()) ? change.droppedAt[q] : NumTraits<StorageIndex>::highest();
-    for (Index x = 0; x < total; ++x) {
-      const StorageIndex p = perm[change.oldOfNew[x]];
-      StorageIndex shift = 0;
-      for (Index q = 0; q < Index(FewDrops); ++q) shift += p > bound[q] ? StorageIndex(1) : StorageIndex(0);
-      change.newPerm[x] = p - shift;
-    }
-  } else {
-    for (Index x = 0; x < total; ++x) change.newPerm[x] = relabel.newPosition[perm[change.oldOfNew[x]]];
-  }
+  const StorageIndex* oldOfNew = change.oldOfNew.data();
+  relabel.newPositionsOf(total, [perm, oldOfNew](Index x) { return perm[oldOfNew[x]]; }, change.newPerm.data());
   change.layoutReady = true;
   if (!change.compareAll) collectCompared(change, total);
   replaceDofs(a, change);
@@ -1443,13 +1411,14 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   {
     const StorageIndex* oldPinv = m_Pinv.indices().data();
     change.newPinv.resize(total);
-    const Index unmoved = (std::min)(change.relabel.firstMoved, total);  // (below it, nothing moves;
-    for (Index j = 0; j < unmoved; ++j)                                  // a merge's dofs keep their number
-      change.newPinv[j] = !change.merging || oldPinv[j] < change.firstMerged ? oldPinv[j] : change.newOfOld[oldPinv[j]];
+    auto newDof = [&change](StorageIndex o) {  // (a merge renumbers only from its first merged dof on)
+      return o < 0 || !change.merging || o < change.firstMerged ? o : change.newOfOld[o];
+    };
+    const Index unmoved = (std::min)(change.relabel.firstMoved, total);  // (below it, no column moves)
+    for (Index j = 0; j < unmoved; ++j) change.newPinv[j] = newDof(oldPinv[j]);
     for (Index j = unmoved; j < total; ++j) {
       const StorageIndex k = change.relabel.oldPosition[j];
-      const StorageIndex o = k < 0 ? StorageIndex(-1) : oldPinv[k];  // (a merge: the identity below its first merged dof)
-      change.newPinv[j] = o < 0 || !change.merging || o < change.firstMerged ? o : change.newOfOld[o];
+      change.newPinv[j] = newDof(k < 0 ? StorageIndex(-1) : oldPinv[k]);
     }
     for (Index x = n; x < total; ++x) change.newPinv[change.newPerm[x]] = StorageIndex(x);  // the copies
     m_P.indices().swap(change.newPerm);
