@@ -301,17 +301,54 @@ void previousRowPositions(const StorageIndex* oldRows, Index count, const Storag
   }
 }
 
-/** \internal Writes column[begin, end) from the \a count previous entries \a previous, each at
-  * its new row at[k] (increasing, within the range), and zero at the rows between them (the
-  * copies' rows, which the previous matrix extended with identity has zero there). */
-template <typename Scalar>
-void spreadColumn(const Scalar* previous, const Index* at, Index count, Scalar* column, Index begin, Index end) {
-  Index i = begin;
+/** \internal A monotone map of positions as runs of consecutive ones: [from, from + length) goes
+  * to [to, to + length). A cut adds a few copy rows to hundreds, a merge drops a few: a column is
+  * then moved by a few block copies instead of an index per entry. */
+struct PositionRun {
+  Index from, to, length;
+};
+
+/** \internal The runs of the map from(k) -> to(k), k < \a count, both increasing. */
+template <typename From, typename To>
+void monotoneRuns(Index count, From&& from, To&& to, std::vector<PositionRun>& runs) {
+  runs.clear();
   for (Index k = 0; k < count; ++k) {
-    for (; i < at[k]; ++i) column[i] = Scalar(0);
-    column[i++] = previous[k];
+    const Index source = from(k), target = to(k);
+    if (!runs.empty() && runs.back().from + runs.back().length == source && runs.back().to + runs.back().length == target)
+      ++runs.back().length;
+    else
+      runs.push_back(PositionRun{source, target, 1});
   }
-  for (; i < end; ++i) column[i] = Scalar(0);
+}
+
+/** \internal The runs of the spread k -> \a target[k] (k < \a count, target increasing). */
+inline void positionRuns(const Index* target, Index count, std::vector<PositionRun>& runs) {
+  monotoneRuns(count, [](Index k) { return k; }, [&](Index k) { return target[k]; }, runs);
+}
+
+/** \internal The runs of the gather \a source[i] -> i (i < \a count, source increasing). */
+inline void gatherRuns(const Index* source, Index count, std::vector<PositionRun>& runs) {
+  monotoneRuns(count, [&](Index i) { return source[i]; }, [](Index i) { return i; }, runs);
+}
+
+/** \internal Writes column[begin, end) from \a previous (indexed by source position) through
+  * \a runs (targets within [0, end)), zero where no run lands (the copies' rows, which the
+  * previous matrix extended with identity has zero there). \a first: a run at or before the
+  * first that reaches \a begin; it is advanced to that run, so that a walk over columns with
+  * increasing begin passes each run once. */
+template <typename Scalar>
+void copyByRuns(const Scalar* previous, const std::vector<PositionRun>& runs, std::size_t& first, Scalar* column,
+                Index begin, Index end) {
+  while (first < runs.size() && runs[first].to + runs[first].length <= begin) ++first;
+  Index i = begin;
+  for (std::size_t r = first; r < runs.size(); ++r) {
+    const PositionRun& run = runs[r];
+    const Index skip = (std::max)(Index(0), begin - run.to), to = run.to + skip;
+    std::fill(column + i, column + to, Scalar(0));
+    std::copy(previous + run.from + skip, previous + run.from + run.length, column + to);
+    i = run.to + run.length;
+  }
+  std::fill(column + i, column + end, Scalar(0));
 }
 
 /** \internal The previous update matrix \a oldU (lower triangle, at.size() square) written into
@@ -320,10 +357,13 @@ void spreadColumn(const Scalar* previous, const Index* at, Index count, Scalar* 
 template <typename Scalar>
 void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index m, UpdateBuffer<Scalar>& U) {
   const Index oldM = Index(at.size());
+  std::vector<PositionRun> runs;
+  positionRuns(at.data(), oldM, runs);
   U.resize(m * m);  // (only the lower triangle is written: the upper one is never read)
+  std::size_t first = 0;
   for (Index j = 0, b = 0; j < m; ++j) {
     if (b < oldM && at[b] == j) {  // a previous column (from its diagonal on); else a copy's, zero
-      spreadColumn(oldU + b + b * oldM, at.data() + b, oldM - b, U.data() + j * m, j, m);
+      copyByRuns(oldU + b * oldM, runs, first, U.data() + j * m, j, m);
       ++b;
     } else {
       std::fill(U.data() + j * m + j, U.data() + (j + 1) * m, Scalar(0));
@@ -352,10 +392,13 @@ bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<
   }
   previousRowPositions(oldRows.data(), oldNr, node.rows.data(), newPosition, at);
   node.values.resize(nr, nc);
+  std::vector<PositionRun> runs;
+  positionRuns(at.data(), oldNr, runs);
   for (Index j = 0, k = 0; j < nc; ++j) {
     Scalar* column = node.values.data() + j * nr;
     if (k < oldNc && at[k] == j) {  // an old column
-      spreadColumn(oldValues.data() + k * oldNr, at.data(), oldNr, column, Index(0), nr);
+      std::size_t first = 0;
+      copyByRuns(oldValues.data() + k * oldNr, runs, first, column, Index(0), nr);
       ++k;
     } else {  // a copy's: its placeholder
       std::fill(column, column + nr, Scalar(0));
@@ -536,12 +579,18 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
       for (Index i = 0; i < m; ++i) W.row(i) = correction.W.row(kept[nc + i] - oldNc);
       correction.W.swap(W);
     }
+    std::vector<PositionRun> runs;
+    gatherRuns(kept.data(), nr, runs);
     block.resize(nr, nc);
-    for (Index j = 0; j < nc; ++j)
-      for (Index i = 0; i < nr; ++i) block(i, j) = node.values(kept[i], kept[j]);
+    for (Index j = 0; j < nc; ++j) {
+      std::size_t first = 0;
+      copyByRuns(node.values.data() + kept[j] * oldNr, runs, first, block.data() + j * nr, Index(0), nr);
+    }
+    for (Index i = 0; i < m; ++i) kept[nc + i] -= oldNc;  // (positions below)
+    gatherRuns(kept.data() + nc, m, runs);
     cut.resize(m * m);
-    for (Index j = 0; j < m; ++j)
-      for (Index i = j; i < m; ++i) cut[i + j * m] = U[(kept[nc + i] - oldNc) + (kept[nc + j] - oldNc) * oldM];
+    std::size_t first = 0;
+    for (Index j = 0; j < m; ++j) copyByRuns(U.data() + kept[nc + j] * oldM, runs, first, cut.data() + j * m, j, m);
   }
   previousStructure();  // (back to the new rows; the previous block and update matrix are in the backup)
   if (!ok) return false;
