@@ -353,11 +353,12 @@ void copyByRuns(const Scalar* previous, const std::vector<PositionRun>& runs, st
 
 /** \internal The previous update matrix \a oldU (lower triangle, at.size() square) written into
   * \a U (m × m) at the new positions \a at of its rows: the rows and columns of the copies a
-  * supernode gained below are zero, as for the previous matrix extended with identity. */
+  * supernode gained below are zero, as for the previous matrix extended with identity. \a runs:
+  * scratch. */
 template <typename Scalar>
-void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index m, UpdateBuffer<Scalar>& U) {
+void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index m, UpdateBuffer<Scalar>& U,
+                        std::vector<PositionRun>& runs) {
   const Index oldM = Index(at.size());
-  std::vector<PositionRun> runs;
   positionRuns(at.data(), oldM, runs);
   U.resize(m * m);  // (only the lower triangle is written: the upper one is never read)
   std::size_t first = 0;
@@ -377,12 +378,12 @@ void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index 
   * sqrt(pivotOf(permuted column)), as in the factor of the previous matrix extended with a
   * diagonal placeholder for each copy (its old columns are the same). Without new rows they are
   * taken from the backup (\a oldValues, \a oldU: \returns true, they must then be recomputed if
-  * the update is reverted), else copied. */
+  * the update is reverted), else copied (\a at, \a runs: scratch). */
 template <typename Scalar, typename StorageIndex, typename PivotOf>
 bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<StorageIndex>& oldRows,
                        Matrix<Scalar, Dynamic, Dynamic>& oldValues, UpdateBuffer<Scalar>& oldU,
                        const std::vector<StorageIndex>& newPosition, std::vector<Index>& at, UpdateBuffer<Scalar>& U,
-                       PivotOf&& pivotOf) {
+                       std::vector<PositionRun>& runs, PivotOf&& pivotOf) {
   const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, oldNr = Index(oldRows.size()), oldNc = oldValues.cols();
   eigen_assert(oldNc <= nc && oldValues.rows() == oldNr && "a folded supernode keeps its columns");
   if (oldNr == nr) {
@@ -392,7 +393,6 @@ bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<
   }
   previousRowPositions(oldRows.data(), oldNr, node.rows.data(), newPosition, at);
   node.values.resize(nr, nc);
-  std::vector<PositionRun> runs;
   positionRuns(at.data(), oldNr, runs);
   for (Index j = 0, k = 0; j < nc; ++j) {
     Scalar* column = node.values.data() + j * nr;
@@ -407,7 +407,7 @@ bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<
   }
   for (Index k = oldNc; k < oldNr; ++k) at[k - oldNc] = at[k] - nc;  // (the rows below, from the supernode's first one below)
   at.resize(oldNr - oldNc);
-  extendUpdateMatrix(oldU.data(), at, m, U);
+  extendUpdateMatrix(oldU.data(), at, m, U, runs);
   return false;
 }
 
@@ -548,12 +548,13 @@ void keptRowPositions(const StorageIndex* oldRows, Index count, const std::vecto
   * placeholder, and those passed up by its children on their previous rows, placed by their
   * previous relative positions), which leave the merged dofs' rows zero (up to rounding) and
   * their columns placeholders; then the block and the update matrix lose them. What is passed up
-  * stays on the previous rows below (merges fold so only without removed dofs). \a kept: scratch.
+  * stays on the previous rows below (merges fold so only without removed dofs). \a kept, \a runs: scratch.
   * \returns false on a lost pivot (the block is then partly changed). */
 template <typename Scalar, typename StorageIndex, typename Backup>
 bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
                          Index s, bool passUp, Backup& backup, const std::vector<StorageIndex>& newPosition,
-                         UpdateWorkspace<Scalar>& ws, std::vector<Index>& kept, double& flops) {
+                         UpdateWorkspace<Scalar>& ws, std::vector<Index>& kept, std::vector<PositionRun>& runs,
+                         double& flops) {
   auto& node = f.nodes[s];
   auto& U = numeric.cache()[s];
   auto previousStructure = [&]() {
@@ -579,7 +580,6 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
       for (Index i = 0; i < m; ++i) W.row(i) = correction.W.row(kept[nc + i] - oldNc);
       correction.W.swap(W);
     }
-    std::vector<PositionRun> runs;
     gatherRuns(kept.data(), nr, runs);
     block.resize(nr, nc);
     for (Index j = 0; j < nc; ++j) {
@@ -623,6 +623,7 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
   std::vector<Index>& bound = ws.foldBound;  // 1 + position in boundary
   for (std::size_t k = 0; k < boundary.size(); ++k) bound[boundary[k].supernode] = Index(k) + 1;
   std::vector<Index> run, at;
+  std::vector<PositionRun> runs;
   UpdateBuffer<Scalar> previousU;
   Index result = -1;
   auto flush = [&]() {
@@ -648,14 +649,14 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
       const FoldBoundary& b = boundary[bound[c] - 1];
       if (merging) {  // on the previous rows below: the new update matrix gets zero rows at the merged dofs
         keptRowPositions(backup.rows[c].data() + oldNc, oldM, newPosition, at);
-        extendUpdateMatrix(numeric.cache()[c].data(), at, oldM, previousU);
+        extendUpdateMatrix(numeric.cache()[c].data(), at, oldM, previousU, runs);
         captured = updateMatrixChange(previousU.data(), oldU, oldM, b.likely, b.bound, ws.carried[c],
                                       ws.carriedNegative[c], flops);
         continue;
       }
       if (oldM != m) {  // (copy rows gained below)
         previousRowPositions(backup.rows[c].data() + oldNc, oldM, child.rows.data() + child.ncols, newPosition, at);
-        extendUpdateMatrix(oldU, at, m, previousU);
+        extendUpdateMatrix(oldU, at, m, previousU, runs);
         oldU = previousU.data();
       }
       captured = updateMatrixChange(numeric.cache()[c].data(), oldU, m, b.likely, b.bound, ws.carried[c],
@@ -664,11 +665,11 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
     if (captured && merging && Index(backup.rows[s].size()) != f.nodes[s].nrows()) {  // (it loses merged dofs)
       const Index p = f.parent[s];
       taken.push_back(s);  // (its previous block is consumed)
-      captured = foldMergedSupernode(f, numeric, s, p != -1 && folded[p], backup, newPosition, ws, at, flops);
+      captured = foldMergedSupernode(f, numeric, s, p != -1 && folded[p], backup, newPosition, ws, at, runs, flops);
     } else if (captured) {
       auto& node = f.nodes[s];
       if (takePreviousBlock(node, backup.rows[s], backup.values[s], backup.cache[s], newPosition, at, numeric.cache()[s],
-                            pivotOf))
+                            runs, pivotOf))
         taken.push_back(s);
       const Index p = f.parent[s];
       captured = foldIntoSupernode(f, numeric, s, p != -1 && folded[p], removed, ws, flops);
