@@ -27,6 +27,7 @@ struct SeamBenchOptions
   std::string csvDir;
   bool smoke = false;
   bool oursOnly = false;  ///< run only this library's methods (the peers' columns stay empty)
+  bool diagonalShift = false;  ///< regularize by 1e-8 diag(L) instead of 1e-8 I (bench_insert_dofs)
 };
 
 /** How one seam benchmark names itself: program, CSV stem (<stem>_<mesh>.csv), plot script, and
@@ -44,7 +45,8 @@ inline void printSeamBenchUsage(const SeamBenchNames& names)
 {
   const std::string pad(std::string(names.program).size(), ' ');
   std::cout << "usage: " << names.program << " [--mesh=PATH[,PATH...]]... [--grid=N] [--lengths=1,5,20,100,500,2000]\n"
-            << "       " << pad << " [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--ours-only] [--smoke]\n"
+            << "       " << pad << " [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--ours-only]\n"
+            << "       " << pad << " [--diagonal-shift] [--smoke]\n"
             << "  --mesh=PATH     OFF mesh, plain or gzip; repeatable or comma-separated\n"
             << "                  (default: " << names.defaultMeshes << ")\n"
             << "  --grid=N        a generated N x N planar grid instead\n"
@@ -57,6 +59,9 @@ inline void printSeamBenchUsage(const SeamBenchNames& names)
             << "                  plot with " << names.plotScript << " DIR\n"
             << "  --ours-only     (bench_insert_dofs) only this library's methods: many repeats of the insert/remove\n"
             << "                  ratio on a large mesh without the peers' seconds per seam (their columns print '-')\n"
+            << "  --diagonal-shift (bench_insert_dofs) Laplacian + 1e-8 diag(Laplacian) instead of + 1e-8 I: a cut then\n"
+            << "                  glues back exactly (its copies' rows and columns added onto their origins give the\n"
+            << "                  uncut matrix), so the change of a cut is one-signed; with I each origin's diagonal differs\n"
             << "  --smoke         tiny grid, l = 1,5, one seam: a quick correctness run for CI\n";
 }
 
@@ -93,6 +98,7 @@ inline bool parseSeamBenchOptions(int argc, char** argv, const SeamBenchNames& n
     else if (key == "--csv-dir" && !value.empty()) o.csvDir = value;
     else if (key == "--smoke" && eq == std::string::npos) o.smoke = true;
     else if (key == "--ours-only" && eq == std::string::npos) o.oursOnly = true;
+    else if (key == "--diagonal-shift" && eq == std::string::npos) o.diagonalShift = true;
     else if (key == "--help" || key == "-h")
     {
       printSeamBenchUsage(names);

@@ -1,5 +1,6 @@
 // bench_insert_dofs: adding dofs by cutting a mesh along a seam, the paper's Fig. 6 for insertion.
-// For each mesh it builds the cotan Laplacian + 1e-8 I and one METIS permutation shared by every
+// For each mesh it builds the cotan Laplacian + 1e-8 I (--diagonal-shift: + 1e-8 diag(L), with which a
+// cut glues back exactly) and one METIS permutation shared by every
 // solver; for seams of l vertices (seamPath(), DESIGN §5) it cuts the mesh along every piece of the
 // seam (cutMesh: interior seam vertices get a copy), builds the cut Laplacian Acut ((n+m)^2) and
 // times, in the same run and interleaved per seam, an update followed by one solve with Acut:
@@ -21,7 +22,8 @@
 // a tiny grid once, for CI.
 //
 // Usage: bench_insert_dofs [--mesh=PATH[,PATH...]]... [--grid=N] [--lengths=1,5,20,100,500,2000]
-//                          [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--ours-only] [--smoke]
+//                          [--seams=5] [--repeats=1] [--threads=1] [--seed=S] [--csv-dir=DIR] [--ours-only]
+//                          [--diagonal-shift] [--smoke]
 // (--ours-only: insertDofs and removeDofs alone, for many repeats of their ratio on a large mesh.)
 // Exit code: 0 if every answer was right, 1 otherwise, 2 on bad usage.
 
@@ -102,12 +104,16 @@ std::string routeName(Eigen::UpdateRoute route)
   }
 }
 
-/** \returns Laplacian + kShift I of a mesh, both triangles stored, compressed. */
-SpMat shiftedLaplacian(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F)
+/** \returns Laplacian + kShift I of a mesh (with \a byDiagonal: + kShift diag(Laplacian), which a
+  * cut shares out between an origin and its copies as it does the Laplacian), both triangles
+  * stored, compressed. */
+SpMat shiftedLaplacian(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bool byDiagonal)
 {
   SpMat A = Eigen::cotanLaplacian<double, int>(V, F);
   SpMat shift(A.rows(), A.cols());
   shift.setIdentity();
+  if (byDiagonal)
+    for (int i = 0; i < A.rows(); ++i) shift.coeffRef(i, i) = A.coeff(i, i);
   A += kShift * shift;
   A.makeCompressed();
   return A;
@@ -214,7 +220,7 @@ public:
       : m_options(options), m_name(name), m_V(V), m_F(F), m_methods(allMethods())
   {
     m_n = int(V.rows());
-    m_A = shiftedLaplacian(V, F);
+    m_A = shiftedLaplacian(V, F, options.diagonalShift);
     m_normA = bench::infinityNorm(m_A);
     m_inB.assign(std::size_t(m_n), 0);
     m_setup["vertices"] = double(m_n);
@@ -343,7 +349,7 @@ private:
     if (!Eigen::cutMesh(m_V, m_F, edges, Vcut, Fcut, cut.origin, &error)) throw std::runtime_error(error);
     cut.m = int(Vcut.rows()) - m_n;
     if (cut.m > m_n) throw std::runtime_error("the cut more than doubles the vertices");
-    cut.Acut = shiftedLaplacian(Vcut, Fcut);
+    cut.Acut = shiftedLaplacian(Vcut, Fcut, m_options.diagonalShift);
     cut.b = m_b.head(m_n + cut.m);
 
     // Old dofs whose column changed (values, or entries at new dofs); every new dof.
@@ -752,10 +758,10 @@ int main(int argc, char** argv)
 
   std::printf("bench_insert_dofs: %s\n", options.smoke ? "SMOKE run (tiny grid, l = 1,5, one seam)"
                                                       : "adding dofs by cutting seams (paper Fig. 6, insertion)");
-  std::printf("  matrix cotan Laplacian + %.0e I; one METIS ordering per mesh given to every solver; seams: "
+  std::printf("  matrix cotan Laplacian + %.0e %s; one METIS ordering per mesh given to every solver; seams: "
               "Eigen::seamPath, %d per l, base seed %u, cut with Eigen::cutMesh along every piece; %d run(s) of every "
               "method per seam, their median counts\n",
-              kShift, options.seams, options.seed, options.repeats);
+              kShift, options.diagonalShift ? "diag(L)" : "I", options.seams, options.seed, options.repeats);
   std::printf("  every time is update + one solve (b uniform in [-1,1]), methods interleaved per seam after one "
               "warm-up seam\n");
   std::printf("  compiled for %s (ours, Eigen); %s\n", bench::compiledInstructionSet(),

@@ -732,9 +732,10 @@ int main(int argc, char** argv)
   const bool heapRetained = bench::retainFreedMemory();  // (every method alike: see HeapPolicy.h)
   Options options;
   if (!bench::parseSeamBenchOptions(argc, argv, kNames, options)) return 2;
-  if (options.oursOnly)
+  if (options.oursOnly || options.diagonalShift)
   {
-    std::fprintf(stderr, "bench_remove_dofs: --ours-only is an option of bench_insert_dofs only\n");
+    std::fprintf(stderr, "bench_remove_dofs: --%s is an option of bench_insert_dofs only\n",
+                 options.oursOnly ? "ours-only" : "diagonal-shift");
     return 2;
   }
   if (openblas_set_num_threads) openblas_set_num_threads(options.threads);
