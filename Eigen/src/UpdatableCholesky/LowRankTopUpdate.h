@@ -435,11 +435,17 @@ void compressSignedChange(Dense& P, Dense& N, double& flops) {
   Dense Vp, Vn;
   signedSquareRoots(core, RealScalar(64) * NumTraits<RealScalar>::epsilon() * scale, Vp, Vn);
   flops += signedCompressionFlops(double(m), double(k));
-  if (Vp.cols() + Vn.cols() >= k) return;  // nothing to gain
-  const Dense Q = qr.householderQ() * Dense::Identity(m, r);
-  P.noalias() = Q * Vp;
-  N.noalias() = Q * Vn;
-  flops += 2.0 * double(m) * double(r) * double(k);
+  const Index p2 = Vp.cols(), q2 = Vn.cols();
+  if (p2 + q2 >= k) return;  // nothing to gain
+  // [P N] = Q [Vp Vn]: the QR's reflections applied to the few new columns (padded with zero
+  // rows), without forming Q (on 415 rows and 31 columns, 13 left: 224 -> 153 us)
+  Dense V = Dense::Zero(m, p2 + q2);
+  V.topLeftCorner(r, p2) = Vp;
+  V.block(0, p2, r, q2) = Vn;
+  V.applyOnTheLeft(qr.householderQ());
+  P = V.leftCols(p2);
+  N = V.rightCols(q2);
+  flops += 4.0 * double(m) * double(r) * double(p2 + q2);
 }
 
 /** \internal Folds into the folded supernode \a s the changes of the update matrices passed up
