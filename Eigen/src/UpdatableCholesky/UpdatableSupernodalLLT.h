@@ -1415,10 +1415,22 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       return o < 0 || !change.merging || o < change.firstMerged ? o : change.newOfOld[o];
     };
     const Index unmoved = (std::min)(change.relabel.firstMoved, total);  // (below it, no column moves)
-    for (Index j = 0; j < unmoved; ++j) change.newPinv[j] = newDof(oldPinv[j]);
-    for (Index j = unmoved; j < total; ++j) {
-      const StorageIndex k = change.relabel.oldPosition[j];
-      change.newPinv[j] = newDof(k < 0 ? StorageIndex(-1) : oldPinv[k]);
+    if (!change.merging) {  // an insertion: the old columns move by runs (one between two origins), copied as such
+      StorageIndex* newPinv = change.newPinv.data();
+      std::copy(oldPinv, oldPinv + unmoved, newPinv);
+      const std::vector<StorageIndex>& at = change.originsAt;
+      Index shift = 0;
+      for (std::size_t q = 0; q < at.size(); ++q) {
+        shift += Index(change.relabel.copies[at[q]]);
+        const Index begin = Index(at[q]) + 1, end = q + 1 < at.size() ? Index(at[q + 1]) + 1 : n;
+        std::copy(oldPinv + begin, oldPinv + end, newPinv + begin + shift);
+      }
+    } else {
+      for (Index j = 0; j < unmoved; ++j) change.newPinv[j] = newDof(oldPinv[j]);
+      for (Index j = unmoved; j < total; ++j) {
+        const StorageIndex k = change.relabel.oldPosition[j];
+        change.newPinv[j] = newDof(k < 0 ? StorageIndex(-1) : oldPinv[k]);
+      }
     }
     for (Index x = n; x < total; ++x) change.newPinv[change.newPerm[x]] = StorageIndex(x);  // the copies
     m_P.indices().swap(change.newPerm);
