@@ -88,18 +88,29 @@ struct DofRelabeling {
     StorageIndex* EIGEN_RESTRICT from = oldPosition.data();
     for (Index k = (std::min)(identityPrefix, firstMoved); k < firstMoved; ++k) to[k] = from[k] = StorageIndex(k);
     recordSteps(at, [&](Index q) { return copies[at[q]]; });
-    shift = 0;
-    for (std::size_t q = 0; q < at.size(); ++q) {
-      const Index origin = Index(at[q]), count = Index(copies[origin]);
-      for (Index t = 1; t <= count; ++t) from[origin + shift + t] = StorageIndex(-1);  // its copies
-      shift += count;
-      const Index end = q + 1 < at.size() ? Index(at[q + 1]) + 1 : n;
-      for (Index k = origin + 1; k < end; ++k) {
+    forEachCopyRun(at, [&](Index origin, Index count, Index begin, Index end, Index shift) {
+      for (Index t = 1; t <= count; ++t) from[origin + shift - count + t] = StorageIndex(-1);  // its copies
+      for (Index k = begin; k < end; ++k) {
         to[k] = StorageIndex(k + shift);
         from[k + shift] = StorageIndex(k);
       }
-    }
+    });
     identityPrefix = firstMoved;
+  }
+
+  /** The runs of an insertion's relabeling (copies at the old permuted columns \a at, increasing,
+    * as given to buildForCopies()), in order: run(origin, count, begin, end, shift) for each
+    * origin with its count copies, placed right after it, and the old columns [begin, end) after
+    * it up to the next origin (included), which move by shift (the copies up to this origin's). */
+  template <typename Run>
+  void forEachCopyRun(const std::vector<StorageIndex>& at, Run&& run) const {
+    const Index n = Index(copies.size());
+    Index shift = 0;
+    for (std::size_t q = 0; q < at.size(); ++q) {
+      const Index origin = Index(at[q]), count = Index(copies[origin]);
+      shift += count;
+      run(origin, count, origin + 1, q + 1 < at.size() ? Index(at[q + 1]) + 1 : n, shift);
+    }
   }
 
   /** build() for a merge: the old permuted columns \a at (increasing, distinct) are dropped and

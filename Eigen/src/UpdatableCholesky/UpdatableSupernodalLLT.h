@@ -1418,13 +1418,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     if (!change.merging) {  // an insertion: the old columns move by runs (one between two origins), copied as such
       StorageIndex* newPinv = change.newPinv.data();
       std::copy(oldPinv, oldPinv + unmoved, newPinv);
-      const std::vector<StorageIndex>& at = change.originsAt;
-      Index shift = 0;
-      for (std::size_t q = 0; q < at.size(); ++q) {
-        shift += Index(change.relabel.copies[at[q]]);
-        const Index begin = Index(at[q]) + 1, end = q + 1 < at.size() ? Index(at[q + 1]) + 1 : n;
+      change.relabel.forEachCopyRun(change.originsAt, [&](Index, Index, Index begin, Index end, Index shift) {
         std::copy(oldPinv + begin, oldPinv + end, newPinv + begin + shift);
-      }
+      });
     } else {
       for (Index j = 0; j < unmoved; ++j) change.newPinv[j] = newDof(oldPinv[j]);
       for (Index j = unmoved; j < total; ++j) {
