@@ -101,7 +101,8 @@ bool downdateByBlockedReflections(Supernode<Scalar, StorageIndex>& node, Dense& 
       gemmProduct(false, false, rows, pb, count, N + j1, nr, V.data(), V.rows(), YJU.data(), M.rows());  // N V
       for (Index kk = 0; kk < pb; ++kk) YJU.col(kk) = Lp.col(kk) * d[kk] - YJU.col(kk);
       auto Mt = MT.topRows(rows).leftCols(pb);
-      Mt.noalias() = YJU * T.topLeftCorner(pb, pb).template triangularView<Upper>();
+      // (T's lower triangle is zero: a plain product, which BLAS runs faster than a triangular one)
+      gemmProduct(false, false, rows, pb, pb, YJU.data(), M.rows(), T.data(), T.rows(), Mt.data(), MT.rows());
       for (Index kk = 0; kk < pb; ++kk) Lp.col(kk) -= Mt.col(kk) * d[kk];
       Vh.topLeftCorner(pb, count) = V.leftCols(pb).adjoint();
       gemmProduct(false, true, rows, count, pb, Mt.data(), MT.rows(), Vh.data(), Vh.rows(), N + j1, nr);
