@@ -9,20 +9,22 @@
 // multifrontal form: supernode s assembles its right-hand side from c and the update vectors of
 // its children (scattered through the parentPosition maps, as the extend-add of the numeric
 // factorization), substitutes, and leaves its own update vector -L21 y_S (plus what its children
-// passed through) for its parent. The cache keeps c, y and every update vector: about
-// (2n + Σ rows below each supernode)·k scalars for k right-hand sides. A substituted supernode
-// gives bitwise the values of a full pass over the same factor and right-hand side. The backward
-// pass changes every entry of x whenever anything changed, so it is always done in full.
+// passed through) for its parent. The cache keeps c, y and every update vector, each supernode's
+// in a region of its own: about (2n + Σ rows below each supernode)·k scalars for k right-hand
+// sides. A substituted supernode gives bitwise the values of a full pass over the same factor and
+// right-hand side. The backward pass changes every entry of x whenever anything changed, so it
+// is always done in full.
 //
-// insertDofs() and mergeDofs() keep the supernodes and renumber the columns (paper §4.2): the
-// kept values follow the renumbering (relabel()); the clean supernodes keep their blocks, their
-// rows below and so their update vectors, and only the dirty ones are substituted again.
+// insertDofs() and mergeDofs() keep the supernodes and renumber the columns (paper §4.2). The
+// kept values are stored by supernode, not by column number, so they stay where they are: the
+// clean supernodes keep their blocks, their rows and so all they kept, and only the dirty ones,
+// whose shapes change, get regions of their new sizes and are substituted again (relabel(),
+// O(dirty supernodes) rather than a move of arrays of size n).
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_INCREMENTAL_FORWARD_SOLVE_H
 #define EIGEN_UPDATABLE_CHOLESKY_INCREMENTAL_FORWARD_SOLVE_H
 
 #include <cstring>
-#include <limits>
 #include <vector>
 
 namespace Eigen {
@@ -69,52 +71,39 @@ class ForwardSolveCache {
     for (Index s : supernodes) m_redo[s] = 1;
   }
 
-  /** Follows a change of the numbering that keeps the supernodes (insertDofs(), mergeDofs():
-    * each old permuted column k moves to \a newPosition[k], or leaves when it is -1; \a f has
-    * the new structure). The kept values of the columns that stay move with them; every new
-    * column gets a right-hand side that matches nothing (so it is substituted). A supernode keeps
-    * its update vector when its number of rows below is the same, and is substituted again
-    * otherwise; the caller still reports the supernodes whose blocks changed (markChanged()).
-    * \a firstMoved: the old columns below it keep their position (0 if unknown); \a reshaped:
-    * the only supernodes whose number of rows may have changed (null: any). */
-  template <typename Positions>
-  void relabel(const Positions& newPosition, const Factor& f, Index firstMoved = 0,
-               const std::vector<Index>* reshaped = nullptr) {
+  /** Follows a change of the numbering that keeps the supernodes (insertDofs(), mergeDofs();
+    * \a f has the new structure): a supernode keeps what it kept when its shape (columns, rows
+    * below) is the same, and is substituted again in a region of its new size otherwise; the
+    * caller still reports the supernodes whose blocks changed (markChanged()). \a reshaped: the
+    * only supernodes whose shape may have changed (null: any). */
+  void relabel(const Factor& f, const std::vector<Index>* reshaped = nullptr) {
     if (!m_valid) return;
-    const Index ns = f.count(), oldN = m_n, newN = f.n;
-    if (Index(newPosition.size()) != oldN || Index(m_redo.size()) != ns) return invalidate();
-    typedef typename NumTraits<Scalar>::Real Real;
-    if (!planMove(newPosition, newN, (std::min)(firstMoved, oldN))) return invalidate();
-    moveInPlace(newN, m_rhs, Scalar(std::numeric_limits<Real>::quiet_NaN()));  // (NaN equals nothing)
-    moveInPlace(newN, m_y, Scalar(0));
-    m_n = newN;
-    // the update vectors: a supernode whose rows below changed is substituted again, in its
-    // region if it fits, else in a new one at the end; the regions are laid out anew once the
-    // abandoned ones hold as much as the live ones
+    if (Index(m_redo.size()) != f.count()) return invalidate();
+    m_n = f.n;
+    // a region too small is abandoned for a new one at the end; the regions are laid out anew
+    // once the abandoned ones hold as much as the live ones
     if (reshaped)
-      for (Index s : *reshaped) resizeUpdate(f, s);
+      for (Index s : *reshaped) resizeRegion(f, s);
     else
-      for (Index s = 0; s < ns; ++s) resizeUpdate(f, s);
-    if (m_abandoned > m_live) compactUpdates();
+      for (Index s = 0; s < f.count(); ++s) resizeRegion(f, s);
+    if (m_abandoned > m_live) compactRegions();
   }
 
   /** Frees the memory held (the next forward() does a full pass). */
   void release() {
     m_valid = false;
-    std::vector<Scalar>().swap(m_rhs);
-    std::vector<Scalar>().swap(m_y);
-    std::vector<Scalar>().swap(m_update);
+    std::vector<Scalar>().swap(m_kept);
     std::vector<Index>().swap(m_offset);
-    std::vector<Index>().swap(m_length);
+    std::vector<Index>().swap(m_columns);
+    std::vector<Index>().swap(m_below);
     std::vector<Index>().swap(m_capacity);
-    std::vector<Index>().swap(m_runs);
     std::vector<char>().swap(m_redo);
   }
 
   /** \returns the bytes held. */
   Index bytes() const {
-    return Index((m_rhs.capacity() + m_y.capacity() + m_update.capacity()) * sizeof(Scalar) +
-                 (m_offset.capacity() + m_length.capacity() + m_capacity.capacity() + m_runs.capacity()) * sizeof(Index) +
+    return Index(m_kept.capacity() * sizeof(Scalar) +
+                 (m_offset.capacity() + m_columns.capacity() + m_below.capacity() + m_capacity.capacity()) * sizeof(Index) +
                  m_redo.capacity());
   }
 
@@ -135,129 +124,72 @@ class ForwardSolveCache {
   }
 
  private:
-  /** Sizes the kept arrays for the factor and k right-hand sides, the update vectors one after
-    * the other (below()·k scalars each); every supernode to be redone. */
+  /** Sizes the kept regions for the factor and k right-hand sides, one after the other; every
+    * supernode to be redone. */
   void reset(const Factor& f, Index k) {
     const Index ns = f.count();
     m_n = f.n;
     m_k = k;
     m_offset.resize(ns);
-    m_length.resize(ns);
+    m_columns.resize(ns);
+    m_below.resize(ns);
+    m_capacity.resize(ns);
     Index total = 0;
     for (Index s = 0; s < ns; ++s) {
+      m_columns[s] = f.nodes[s].ncols;
+      m_below[s] = f.nodes[s].below();
       m_offset[s] = total;
-      m_length[s] = f.nodes[s].below() * k;
-      total += m_length[s];
+      m_capacity[s] = regionLength(s);
+      total += m_capacity[s];
     }
-    m_capacity = m_length;
     m_abandoned = 0;
     m_live = total;
-    m_rhs.resize(m_n * k);
-    m_y.resize(m_n * k);
-    m_update.resize(total);
+    m_kept.resize(total);
     m_redo.assign(ns, 1);
   }
 
-  /** Gives supernode \a s an update vector of its current size (a new region at the end when
-    * its own is too small), to be substituted again if the size changed. */
-  void resizeUpdate(const Factor& f, Index s) {
-    const Index length = f.nodes[s].below() * m_k;
-    if (length == m_length[s]) return;
+  /** Scalars of supernode s's region: its right-hand side and y (columns × k each), then its
+    * update vector (rows below × k), all column by column. */
+  Index regionLength(Index s) const { return (2 * m_columns[s] + m_below[s]) * m_k; }
+  Scalar* rhsOf(Index s) { return m_kept.data() + m_offset[s]; }
+  Scalar* yOf(Index s) { return m_kept.data() + m_offset[s] + m_columns[s] * m_k; }
+  Scalar* updateOf(Index s) { return m_kept.data() + m_offset[s] + 2 * m_columns[s] * m_k; }
+
+  /** Gives supernode \a s a region of its current shape (a new one at the end when its own is
+    * too small), to be substituted again if the shape changed. */
+  void resizeRegion(const Factor& f, Index s) {
+    const auto& node = f.nodes[s];
+    if (node.ncols == m_columns[s] && node.below() == m_below[s]) return;
     m_redo[s] = 1;
-    m_live += length - m_length[s];
-    m_length[s] = length;
+    m_live -= regionLength(s);
+    m_columns[s] = node.ncols;
+    m_below[s] = node.below();
+    const Index length = regionLength(s);
+    m_live += length;
     if (length <= m_capacity[s]) return;
     m_abandoned += m_capacity[s];
-    m_offset[s] = Index(m_update.size());
+    m_offset[s] = Index(m_kept.size());
     m_capacity[s] = length;
-    if (m_update.capacity() < m_update.size() + std::size_t(length))  // (grown by an eighth, not doubled)
-      m_update.reserve(m_update.size() + std::size_t(length) + m_update.size() / 8);
-    m_update.resize(m_update.size() + std::size_t(length));
+    if (m_kept.capacity() < m_kept.size() + std::size_t(length))  // (grown by an eighth, not doubled)
+      m_kept.reserve(m_kept.size() + std::size_t(length) + m_kept.size() / 8);
+    m_kept.resize(m_kept.size() + std::size_t(length));
   }
 
-  /** Lays the update vectors out again one after the other (the kept ones keep their values). */
-  void compactUpdates() {
+  /** Lays the regions out again one after the other (the kept ones keep their values). */
+  void compactRegions() {
     const Index ns = Index(m_offset.size());
     Index total = 0;
-    for (Index s = 0; s < ns; ++s) total += m_length[s];
+    for (Index s = 0; s < ns; ++s) total += regionLength(s);
     std::vector<Scalar> compact(total);
     for (Index s = 0, at = 0; s < ns; ++s) {
-      if (!m_redo[s])
-        std::copy(m_update.begin() + m_offset[s], m_update.begin() + m_offset[s] + m_length[s], compact.begin() + at);
+      const Index length = regionLength(s);
+      if (!m_redo[s]) std::copy(m_kept.begin() + m_offset[s], m_kept.begin() + m_offset[s] + length, compact.begin() + at);
       m_offset[s] = at;
-      m_capacity[s] = m_length[s];
-      at += m_length[s];
+      m_capacity[s] = length;
+      at += length;
     }
-    m_update.swap(compact);
+    m_kept.swap(compact);
     m_abandoned = 0;
-  }
-
-  /** Plans the renumbering of the n×k arrays (column-major, leading dimension m_n) to leading
-    * dimension \a newN: entry q of each column goes to newPosition[q], or leaves when it is -1.
-    * The kept entries keep their order, so they move in runs of the same shift (m_runs). \returns
-    * false when the positions are not such a renumbering in one direction (all kept entries
-    * moving up, or all moving down), which moveInPlace() could not do in place. The entries
-    * below \a firstMoved keep their position (one run, not read). */
-  template <typename Positions>
-  bool planMove(const Positions& newPosition, Index newN, Index firstMoved) {
-    const Index oldN = m_n;
-    std::vector<Index>& runs = m_runs;  // (begin, end, shift) of each run of kept entries
-    runs.clear();
-    bool up = false, down = false;
-    eigen_assert(firstMoved <= newN && "ForwardSolveCache::planMove: the unmoved entries do not fit");
-    if (firstMoved > 0) runs.insert(runs.end(), {Index(0), firstMoved, Index(0)});  // (entries that stay)
-    for (Index q = firstMoved; q < oldN; ++q) {
-      const Index to = Index(newPosition[q]);
-      if (to < 0) continue;
-      if (to >= newN) return false;
-      const Index shift = to - q;
-      up = up || shift > 0;
-      down = down || shift < 0;
-      if (!runs.empty() && runs[runs.size() - 2] == q && runs.back() == shift)
-        ++runs[runs.size() - 2];
-      else
-        runs.insert(runs.end(), {q, q + 1, shift});
-    }
-    m_moveUp = up || newN > oldN;  // (each entry then moves up: in every column when n does not shrink)
-    return !(up && down) && !(m_moveUp && newN < oldN && m_k > 1);
-  }
-
-  /** Renumbers the n×k array \a a in place as planMove() planned; the new entries that nothing
-    * moves to get \a fill. Runs that do not move (before the first moved entry, in the first
-    * column) are not touched. */
-  void moveInPlace(Index newN, std::vector<Scalar>& a, const Scalar& fill) const {
-    const Index oldN = m_n, k = m_k;
-    const std::vector<Index>& runs = m_runs;
-    const Index count = Index(runs.size()) / 3;
-    auto fillHoles = [&](Index c) {  // the new entries of column c that no run reached
-      Scalar* column = a.data() + c * newN;
-      Index next = 0;
-      for (Index r = 0; r < count; ++r) {
-        const Index begin = runs[3 * r] + runs[3 * r + 2];
-        std::fill(column + next, column + begin, fill);
-        next = runs[3 * r + 1] + runs[3 * r + 2];
-      }
-      std::fill(column + next, column + newN, fill);
-    };
-    auto moveRun = [&](Index c, Index r) {
-      const Index begin = runs[3 * r], end = runs[3 * r + 1], shift = runs[3 * r + 2];
-      const Scalar* from = a.data() + c * oldN + begin;
-      Scalar* to = a.data() + c * newN + begin + shift;
-      if (from != to) std::memmove(to, from, std::size_t(end - begin) * sizeof(Scalar));
-    };
-    if (m_moveUp) {  // from the last entry down, after growing
-      if (newN > oldN) a.resize(std::size_t(newN * k));
-      for (Index c = k - 1; c >= 0; --c) {
-        for (Index r = count - 1; r >= 0; --r) moveRun(c, r);
-        fillHoles(c);
-      }
-    } else {  // from the first entry up
-      for (Index c = 0; c < k; ++c) {
-        for (Index r = 0; r < count; ++r) moveRun(c, r);
-        fillHoles(c);
-      }
-    }
-    a.resize(std::size_t(newN * k));  // (shrinking, when entries left)
   }
 
   /** \internal Whether a[0..n) == b[0..n) (by value: a NaN differs from everything, and the
@@ -276,8 +208,9 @@ class ForwardSolveCache {
     // 1. What to substitute: changed blocks, changed right-hand sides, and everything above them.
     for (Index s = 0; s < ns; ++s) {
       const auto& node = f.nodes[s];
+      resizeRegion(f, s);  // (a shape that changed unreported: substituted again)
       for (Index c = 0; c < k && !m_redo[s]; ++c)
-        m_redo[s] = !sameValues(X + node.firstCol + c * ldx, m_rhs.data() + node.firstCol + c * m_n, node.ncols);
+        m_redo[s] = !sameValues(X + node.firstCol + c * ldx, rhsOf(s) + c * node.ncols, node.ncols);
       if (m_redo[s] && f.parent[s] != -1) m_redo[f.parent[s]] = 1;
     }
     // 2. The pass: kept values where nothing changed, a multifrontal substitution elsewhere.
@@ -289,7 +222,7 @@ class ForwardSolveCache {
       const Index nr = node.nrows(), nc = node.ncols;
       if (!m_redo[s]) {
         for (Index c = 0; c < k; ++c)
-          std::memcpy(X + node.firstCol + c * ldx, m_y.data() + node.firstCol + c * m_n, std::size_t(nc) * sizeof(Scalar));
+          std::memcpy(X + node.firstCol + c * ldx, yOf(s) + c * nc, std::size_t(nc) * sizeof(Scalar));
         continue;
       }
       m_redo[s] = 0;
@@ -297,7 +230,7 @@ class ForwardSolveCache {
       prefetchSupernode(node);
       for (Index c = 0; c < k; ++c) {
         const Scalar* xs = X + node.firstCol + c * ldx;
-        std::memcpy(m_rhs.data() + node.firstCol + c * m_n, xs, std::size_t(nc) * sizeof(Scalar));
+        std::memcpy(rhsOf(s) + c * nc, xs, std::size_t(nc) * sizeof(Scalar));
         Scalar* vc = v + c * nr;
         std::memcpy(vc, xs, std::size_t(nc) * sizeof(Scalar));
         std::fill(vc + nc, vc + nr, Scalar(0));
@@ -307,7 +240,7 @@ class ForwardSolveCache {
         const Index m = child.below();
         const StorageIndex* position = child.parentPosition.data();
         for (Index c = 0; c < k; ++c) {
-          const Scalar* u = m_update.data() + m_offset[ch] + c * m;
+          const Scalar* u = updateOf(ch) + c * m;
           Scalar* vc = v + c * nr;
           for (Index i = 0; i < m; ++i) vc[position[i]] += u[i];
         }
@@ -316,9 +249,8 @@ class ForwardSolveCache {
       for (Index c = 0; c < k; ++c) {
         const Scalar* vc = v + c * nr;
         std::memcpy(X + node.firstCol + c * ldx, vc, std::size_t(nc) * sizeof(Scalar));
-        std::memcpy(m_y.data() + node.firstCol + c * m_n, vc, std::size_t(nc) * sizeof(Scalar));
-        if (nr > nc)  // (a root keeps no update vector: m_update may even be empty)
-          std::memcpy(m_update.data() + m_offset[s] + c * (nr - nc), vc + nc, std::size_t(nr - nc) * sizeof(Scalar));
+        std::memcpy(yOf(s) + c * nc, vc, std::size_t(nc) * sizeof(Scalar));
+        if (nr > nc) std::memcpy(updateOf(s) + c * (nr - nc), vc + nc, std::size_t(nr - nc) * sizeof(Scalar));
       }
     }
     m_valid = true;
@@ -326,17 +258,16 @@ class ForwardSolveCache {
 
   bool m_valid = false;
   Index m_n = 0, m_k = 0, m_substitutedColumns = 0;
-  std::vector<Scalar> m_rhs;     ///< the right-hand side of the kept substitution, n×k
-  std::vector<Scalar> m_y;       ///< its result L^{-1} c, n×k
-  std::vector<Scalar> m_update;  ///< each supernode's update vector, below()×k at m_offset[s]
-  std::vector<Index> m_offset;   ///< where each supernode's region of m_update starts
-  std::vector<Index> m_length;   ///< the scalars of each supernode's update vector (below()·k)
-  std::vector<Index> m_capacity; ///< the scalars its region holds (relabel() reuses it when they fit)
-  Index m_abandoned = 0;         ///< scalars of m_update in regions no supernode uses any more
-  Index m_live = 0;              ///< scalars of m_update in use (the sum of m_length)
-  std::vector<char> m_redo;      ///< supernodes to substitute again (all zero after a pass)
-  std::vector<Index> m_runs;     ///< planMove()'s runs of kept entries: (begin, end, shift) each
-  bool m_moveUp = false;         ///< planMove(): the entries move up (moveInPlace() goes from the end)
+  /** Each supernode's region: its right-hand side c_S and y_S (columns × k each) and its update
+    * vector (rows below × k), at m_offset[s] */
+  std::vector<Scalar> m_kept;
+  std::vector<Index> m_offset;    ///< where each supernode's region starts
+  std::vector<Index> m_columns;   ///< the columns of each supernode when its region was laid out
+  std::vector<Index> m_below;     ///< its rows below then
+  std::vector<Index> m_capacity;  ///< the scalars its region holds (relabel() reuses it when they fit)
+  Index m_abandoned = 0;          ///< scalars of m_kept in regions no supernode uses any more
+  Index m_live = 0;               ///< scalars of m_kept in use (the sum of the regions' lengths)
+  std::vector<char> m_redo;       ///< supernodes to substitute again (all zero after a pass)
 };
 
 }  // namespace updatable_cholesky
