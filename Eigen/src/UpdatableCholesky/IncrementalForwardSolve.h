@@ -144,7 +144,8 @@ class ForwardSolveCache {
     }
     m_abandoned = 0;
     m_live = total;
-    m_kept.resize(total);
+    m_kept.reserve(std::size_t(total + total / 8));  // (room for the dirty supernodes that grow: no
+    m_kept.resize(total);                            // reallocation of everything at the first cut)
     m_redo.assign(ns, 1);
   }
 
