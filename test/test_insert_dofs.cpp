@@ -15,6 +15,7 @@
 #include <unsupported/Eigen/MeshTools>
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <random>
@@ -577,6 +578,57 @@ TEST_CASE_TEMPLATE("the blocked downdate keeps L L^H - W W^H and agrees with hyp
     Dense big = W * Scalar(Real(4 * shape.rows));
     CHECK_FALSE(Eigen::internal::updatable_cholesky::downdateByBlockedReflections(node, big, 0, shape.rank, shape.start,
                                                                                   removed.data(), flops));
+  }
+}
+
+TEST_CASE_TEMPLATE("a relabeling's new positions agree however they are computed", StorageIndex, int, long) {
+  // DofRelabeling::newPositionsOf() (DofInsertion.h) gives the new positions of the kept old
+  // columns by compares with few steps and by a table of blocks of 2^BlockBits columns with many
+  // (newPosition itself in the blocks that hold a step): both must agree with newPosition, for
+  // copies and for drops, with steps at block boundaries, at the first and at the last column.
+  typedef Eigen::internal::updatable_cholesky::DofRelabeling<StorageIndex> Relabeling;
+  const Index block = Index(1) << Relabeling::BlockBits;
+  std::mt19937 g(17);
+  for (Index n : {Index(1), block - 1, block, block + 1, Index(5000)}) {
+    for (Index count : {Index(1), Index(3), Index(8), Index(9), Index(40), Index(300)}) {
+      if (count > n) continue;
+      std::vector<StorageIndex> at;  // distinct, increasing; block edges and the ends included when they fit
+      std::vector<char> taken(n, 0);
+      for (Index c : {Index(0), n - 1, block - 1, block, 2 * block})
+        if (c < n && Index(at.size()) < count && !taken[c]) taken[c] = 1, at.push_back(StorageIndex(c));
+      while (Index(at.size()) < count) {
+        const Index c = Index(g() % std::uint32_t(n));
+        if (!taken[c]) taken[c] = 1, at.push_back(StorageIndex(c));
+      }
+      std::sort(at.begin(), at.end());
+      CAPTURE(n);
+      CAPTURE(count);
+      for (int drops = 0; drops < 2; ++drops) {
+        CAPTURE(drops);
+        Relabeling relabel;
+        relabel.copies.assign(n, 0);
+        if (drops) {
+          relabel.buildForDrops(at);
+        } else {
+          for (StorageIndex c : at) relabel.copies[c] = StorageIndex(1 + g() % 3);
+          relabel.buildForCopies(at);
+        }
+        CHECK(relabel.steps == (count <= Index(Relabeling::MaxSteps) ? count : Index(-1)));
+        std::vector<StorageIndex> kept;  // the kept old columns, in a shuffled order (as a permutation gives them)
+        for (Index k = 0; k < n; ++k)
+          if (relabel.newPosition[k] >= 0) kept.push_back(StorageIndex(k));
+        std::shuffle(kept.begin(), kept.end(), g);
+        std::vector<StorageIndex> out(kept.size());
+        relabel.newPositionsOf(Index(kept.size()), [&](Index i) { return kept[i]; }, out.data());
+        Index wrong = 0;
+        for (std::size_t i = 0; i < kept.size(); ++i) wrong += out[i] != relabel.newPosition[kept[i]];
+        CHECK(wrong == 0);
+        Index lost = 0;  // (and newPosition is the relabeling: old column k lands at its new place)
+        for (Index k = 0; k < n; ++k)
+          lost += relabel.newPosition[k] >= 0 && relabel.oldPosition[relabel.newPosition[k]] != StorageIndex(k);
+        CHECK(lost == 0);
+      }
+    }
   }
 }
 

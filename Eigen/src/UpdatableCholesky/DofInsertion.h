@@ -49,14 +49,26 @@ struct DofRelabeling {
   enum { MaxSteps = 8 };
   StorageIndex stepAt[MaxSteps], stepShift[MaxSteps];
   Index steps = -1;
+  /** With more steps: the shift of the old columns of each block of 2^BlockBits (the same for
+    * all of them when no step lies in the block), or MixedBlock when a step does. */
+  enum { BlockBits = 8 };
+  std::vector<StorageIndex> blockShift;
+  static constexpr StorageIndex MixedBlock = NumTraits<StorageIndex>::highest();
 
-  /** out[i] = the new position of the kept old column oldColumn(i), for i < count. With few
-    * steps, by compares in one pass in order (they vectorize), rather than a load from
-    * newPosition at a random place per column. */
+  /** out[i] = the new position of the kept old column oldColumn(i), for i < count, in one pass
+    * in order rather than a load from newPosition at a random place per column (the columns
+    * come in the user's order: that load misses the cache once newPosition outgrows it). With
+    * few steps, by compares (they vectorize); with more, from the shift of the column's block
+    * (a table that stays in cache), newPosition only for the blocks that hold a step. */
   template <typename OldColumn>
   void newPositionsOf(Index count, OldColumn&& oldColumn, StorageIndex* EIGEN_RESTRICT out) const {
     if (steps < 0) {
-      for (Index i = 0; i < count; ++i) out[i] = newPosition[oldColumn(i)];
+      const StorageIndex* block = blockShift.data();
+      const StorageIndex* to = newPosition.data();
+      for (Index i = 0; i < count; ++i) {
+        const StorageIndex k = StorageIndex(oldColumn(i)), shift = block[k >> BlockBits];
+        out[i] = shift != MixedBlock ? StorageIndex(k + shift) : to[k];
+      }
       return;
     }
     StorageIndex at[MaxSteps], shift[MaxSteps];  // (unused steps: never passed, add nothing)
@@ -146,6 +158,17 @@ struct DofRelabeling {
     for (Index q = 0; q < steps; ++q) {
       stepAt[q] = at[q];
       stepShift[q] = StorageIndex(shiftOf(q));
+    }
+    if (steps >= 0) return;
+    // the block table: a column moves by the shifts of the steps below it, the same for a whole
+    // block when no step lies in it
+    const Index n = Index(copies.size()), blocks = (n >> BlockBits) + 1, count = Index(at.size());
+    blockShift.resize(blocks);
+    StorageIndex shift = 0;
+    for (Index b = 0, q = 0; b < blocks; ++b) {
+      const Index begin = b << BlockBits, end = begin + (Index(1) << BlockBits);
+      for (; q < count && Index(at[q]) < begin; ++q) shift += StorageIndex(shiftOf(q));
+      blockShift[b] = q < count && Index(at[q]) < end ? MixedBlock : shift;
     }
   }
 };
