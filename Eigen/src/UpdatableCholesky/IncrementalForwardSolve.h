@@ -18,7 +18,7 @@
 // insertDofs() and mergeDofs() keep the supernodes and renumber the columns (paper §4.2). The
 // kept values are stored by supernode, not by column number, so they stay where they are: the
 // clean supernodes keep their blocks, their rows and so all they kept, and only the dirty ones,
-// whose shapes change, get regions of their new sizes and are substituted again (relabel(),
+// whose shapes change, get regions of their new sizes and are substituted again (followStructure(),
 // O(dirty supernodes) rather than a move of arrays of size n).
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_INCREMENTAL_FORWARD_SOLVE_H
@@ -72,20 +72,17 @@ class ForwardSolveCache {
   }
 
   /** Follows a change of the numbering that keeps the supernodes (insertDofs(), mergeDofs();
-    * \a f has the new structure): a supernode keeps what it kept when its shape (columns, rows
-    * below) is the same, and is substituted again in a region of its new size otherwise; the
-    * caller still reports the supernodes whose blocks changed (markChanged()). \a reshaped: the
-    * only supernodes whose shape may have changed (null: any). */
-  void relabel(const Factor& f, const std::vector<Index>* reshaped = nullptr) {
+    * \a f has the new structure; \a reshaped: the only supernodes whose shape may have changed):
+    * a supernode keeps what it kept when its shape (columns, rows below) is the same, and is
+    * substituted again in a region of its new size otherwise; the caller still reports the
+    * supernodes whose blocks changed (markChanged()). */
+  void followStructure(const Factor& f, const std::vector<Index>& reshaped) {
     if (!m_valid) return;
     if (Index(m_redo.size()) != f.count()) return invalidate();
     m_n = f.n;
     // a region too small is abandoned for a new one at the end; the regions are laid out anew
     // once the abandoned ones hold as much as the live ones
-    if (reshaped)
-      for (Index s : *reshaped) resizeRegion(f, s);
-    else
-      for (Index s = 0; s < f.count(); ++s) resizeRegion(f, s);
+    for (Index s : reshaped) resizeRegion(f, s);
     if (m_abandoned > m_live) compactRegions();
   }
 
@@ -265,7 +262,7 @@ class ForwardSolveCache {
   std::vector<Index> m_offset;    ///< where each supernode's region starts
   std::vector<Index> m_columns;   ///< the columns of each supernode when its region was laid out
   std::vector<Index> m_below;     ///< its rows below then
-  std::vector<Index> m_capacity;  ///< the scalars its region holds (relabel() reuses it when they fit)
+  std::vector<Index> m_capacity;  ///< the scalars its region holds (followStructure() reuses it when they fit)
   Index m_abandoned = 0;          ///< scalars of m_kept in regions no supernode uses any more
   Index m_live = 0;               ///< scalars of m_kept in use (the sum of the regions' lengths)
   std::vector<char> m_redo;       ///< supernodes to substitute again (all zero after a pass)

@@ -1635,7 +1635,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     diff.commit(m_store);
     m_info = Success;
     // (only the dirty supernodes gain or lose rows; recordUpdate() marks them to be substituted)
-    m_solveCache.relabel(m_factor, &dirty);
+    m_solveCache.followStructure(m_factor, dirty);
   }
   for (Index s : dirty) mark[s] = 0;
   backup.release(m_factor, dirty);  // the previous blocks are not kept past the call
