@@ -376,6 +376,24 @@ typename Cfg::FullMatrix withIdentityRows(const typename Cfg::FullMatrix& A, con
   return B;
 }
 
+/** True when the removed dofs' rows and columns of the solver's factor are exactly those of the
+  * identity (zero rows, unit columns), as a Dirichlet solve needs to return the known values
+  * unchanged: the folds of the low-rank routes keep them only up to rounding unless cleared. */
+template <typename Cfg, typename Solver>
+bool removedAreIdentity(const Solver& llt, const std::vector<char>& removed) {
+  const typename Cfg::FullMatrix L = llt.matrixL();
+  std::vector<char> permuted(removed.size(), 0);
+  for (std::size_t i = 0; i < removed.size(); ++i)
+    if (removed[i]) permuted[std::size_t(llt.permutationP().indices()[Index(i)])] = 1;
+  for (Index j = 0; j < L.outerSize(); ++j)
+    for (typename Cfg::FullMatrix::InnerIterator it(L, j); it; ++it) {
+      if (!permuted[std::size_t(it.row())] && !permuted[std::size_t(it.col())]) continue;
+      const typename Cfg::Scalar expected(it.row() == it.col() ? 1 : 0);
+      if (!(it.value() == expected)) return false;
+    }
+  return true;
+}
+
 /** || La - Lb ||_F / ||Lb||_F for two factors with the same permutation. */
 template <typename Cfg, typename SolverA, typename SolverB>
 double factorDifference(const SolverA& a, const SolverB& b) {

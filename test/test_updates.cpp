@@ -132,6 +132,7 @@ void randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route
     const double diff = factorDifference<Cfg>(llt, fresh);
     const bool exact = route == Eigen::UpdateRoute::PartialRefactorization || route == Eigen::UpdateRoute::Refactorization;
     CHECK(diff <= (exact ? exactTolerance<Cfg>() : lowRankTolerance<Cfg>()));
+    CHECK(removedAreIdentity<Cfg>(llt, removed));
     (void)lowRankStep;
     // the kept forward substitution: redone on the dirty supernodes only, equal to a full pass
     const typename Cfg::Dense xKept = llt.solve(bFixed);

@@ -180,6 +180,29 @@ std::vector<Index> dirtySupernodes(const SupernodalFactor<Scalar, StorageIndex>&
   return dirty;
 }
 
+/** \internal Appends to \a out the supernodes that hold permuted row \a b below their columns
+  * (the row subtree of b in the factor's structure, which may hold more than the row subtree of
+  * the current matrix's pattern: supernodes are amalgamated, and a cut keeps the duplicated
+  * pattern). A supernode's rows below its columns lie in its parent's columns or rows, so they
+  * form a tree hanging from b's supernode, searched through the children. \a stack: scratch. */
+template <typename Scalar, typename StorageIndex>
+void supernodesHoldingRow(const SupernodalFactor<Scalar, StorageIndex>& f, Index b, std::vector<Index>& out,
+                          std::vector<Index>& stack) {
+  stack.assign(1, f.colToSuper[b]);
+  while (!stack.empty()) {
+    const Index s = stack.back();
+    stack.pop_back();
+    for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) {
+      const auto& rows = f.nodes[c].rows;
+      if (f.lastRow[c] < StorageIndex(b) ||
+          !std::binary_search(rows.begin() + f.nodes[c].ncols, rows.end(), StorageIndex(b)))
+        continue;
+      out.push_back(c);
+      stack.push_back(c);
+    }
+  }
+}
+
 /** \internal Dense flops of recomputing the given supernodes (reduced fronts counted on their
   * kept rows and columns when \a removed, flags by permuted column, is given). */
 template <typename Scalar, typename StorageIndex>

@@ -414,6 +414,41 @@ class SupernodalNumeric {
     m_pending[s].clear();
     return flops;
   }
+  /** Makes the rows and columns of removed dofs (\a removed: flags by permuted column) in
+    * supernode \a s exactly those of the identity: zero rows and unit columns in its block, zero
+    * rows and columns in its cached update matrix and in its deferred corrections. The updates'
+    * folds keep them so up to rounding only (a rotation or a compression may leave 1e-17 where a
+    * zero was), and a solve with Dirichlet values must return them unchanged. \returns true
+    * when the block changed (its solves change with it). */
+  bool clearRemoved(Factor& f, Index s, const char* removed) {
+    Node& node = f.nodes[s];
+    const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
+    Scalar* L = node.values.data();
+    const bool cached = m > 0 && Index(m_cache.size()) > s && Index(m_cache[s].size()) == m * m;
+    Scalar* U = cached ? m_cache[s].data() : nullptr;
+    bool changed = false;
+    for (Index p = 0; p < nr; ++p) {
+      if (!removed[node.rows[p]]) continue;
+      for (Index j = 0; j < (std::min)(p, nc); ++j) {
+        changed = changed || L[p + j * nr] != Scalar(0);
+        L[p + j * nr] = Scalar(0);
+      }
+      if (p < nc) {
+        for (Index i = p + 1; i < nr && !changed; ++i) changed = L[i + p * nr] != Scalar(0);
+        changed = changed || L[p + p * nr] != Scalar(1);
+        std::fill(L + p * nr, L + (p + 1) * nr, Scalar(0));
+        L[p + p * nr] = Scalar(1);
+        continue;
+      }
+      const Index u = p - nc;
+      if (U)
+        for (Index i = 0; i < m; ++i) U[u + i * m] = U[i + u * m] = Scalar(0);
+      if (Index(m_pending.size()) > s)
+        for (Correction& c : m_pending[s]) c.W.row(u).setZero();
+    }
+    return changed;
+  }
+
   /** Drops the deferred corrections of supernode \a s (its cached matrix is being put back). */
   void discardCorrections(Index s) {
     if (Index(m_pending.size()) > s) m_pending[s].clear();

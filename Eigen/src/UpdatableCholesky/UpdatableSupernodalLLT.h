@@ -534,6 +534,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
                     std::chrono::steady_clock::time_point start) {
     UpdateStatistics& st = m_lastUpdate;
     const bool all = route == UpdateRoute::Refactorization;
+    if (!all && !m_removedList.empty())  // (every update ends here: removed dofs stay exact identity)
+      for (Index s : dirty) m_numeric.clearRemoved(m_factor, s, m_removedPermuted.data());
     st.route = route;
     st.changedColumns = changedColumns;
     st.dirtySupernodes = all ? m_factor.count() : Index(dirty.size());
@@ -547,6 +549,27 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
       m_solveCache.invalidate();
     else
       m_solveCache.markChanged(dirty);
+  }
+  /** After removeDofs(): the dirty supernodes are those of the removed columns' row subtrees in
+    * the matrix's pattern and their ancestors, but a supernode outside them may still hold a
+    * removed row in its structure (amalgamation, or a cut's duplicated pattern) whose values are
+    * zero only up to rounding (left by earlier folds). Those rows are zeroed too, and the
+    * supernodes whose blocks changed join \a dirty (increasing), so that a Dirichlet solve
+    * returns the known values exactly. Only reads the structure unless such a value is found. */
+  void clearRemovedRowsOutside(const std::vector<StorageIndex>& removedNow, std::vector<Index>& dirty) {
+    std::vector<char>& mark = m_workspace.mark;
+    for (Index s : dirty) mark[s] = 1;
+    std::vector<Index> holding, stack;
+    for (StorageIndex b : removedNow) internal::updatable_cholesky::supernodesHoldingRow(m_factor, b, holding, stack);
+    const std::size_t before = dirty.size();
+    for (Index s : holding)
+      if (!mark[s]) {
+        mark[s] = 1;
+        if (m_numeric.clearRemoved(m_factor, s, m_removedPermuted.data())) dirty.push_back(s);
+      }
+    for (Index s : holding) mark[s] = 0;
+    for (Index s : dirty) mark[s] = 0;
+    if (dirty.size() != before) std::sort(dirty.begin(), dirty.end());
   }
   template <typename Revert>
   void applyUpdate(const std::vector<StorageIndex>& permutedColumns, bool isRemoval, Revert&& revert);
@@ -709,8 +732,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   using namespace internal::updatable_cholesky;
   const auto start = std::chrono::steady_clock::now();
   m_sparseLIsValid = false;
-  const std::vector<Index> dirty = dirtySupernodes(m_factor, m_store, m_transposed, m_P.indices().data(),
-                                                   m_Pinv.indices().data(), permutedColumns, m_workspace);
+  std::vector<Index> dirty = dirtySupernodes(m_factor, m_store, m_transposed, m_P.indices().data(),
+                                             m_Pinv.indices().data(), permutedColumns, m_workspace);
   const char* removedFlags = m_removedList.empty() ? nullptr : m_removedPermuted.data();
   const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
   const double dirtyFlops = supernodeFlops(m_factor, dirty, removedFlags);
@@ -732,6 +755,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   if (route == UpdateRoute::LowRank) {  // cannot fail: removal keeps A positive definite
     const double flops = lowRankRemoval(m_factor, m_numeric, dirty, m_removedPermuted.data(), m_workspace);
     m_info = Success;
+    clearRemovedRowsOutside(permutedColumns, dirty);
     recordUpdate(route, Index(permutedColumns.size()), dirty, flops, start);
     return;
   }
@@ -747,6 +771,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
       m_factorizationIsOk = m_numeric.factorize(m_factor, numericInput(), threadCount()) < 0;
       m_solveCache.invalidate();
       m_info = NumericalIssue;
+    } else {
+      clearRemovedRowsOutside(permutedColumns, dirty);
     }
     recordUpdate(route, Index(permutedColumns.size()), dirty, flops, start);
     return;
@@ -766,6 +792,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
     m_info = NumericalIssue;
   } else {
     m_info = Success;
+    if (isRemoval && route != UpdateRoute::Refactorization) clearRemovedRowsOutside(permutedColumns, dirty);
   }
   recordUpdate(route, Index(permutedColumns.size()), dirty,
                route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops, start);
