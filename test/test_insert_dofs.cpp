@@ -1058,6 +1058,7 @@ void meshCutSession(const Eigen::MatrixXd& V0, const Eigen::MatrixXi& F0, int st
     const State& cur = history.back();
     const int nV = int(cur.V.rows());
     int op = int(g() % 5);
+    if (step + 2 == steps && undos == 0 && history.size() == 1) op = 0;  // (something to undo at the end)
     if (step + 1 == steps && undos == 0) op = 2;
     CAPTURE(step);
     CAPTURE(op);

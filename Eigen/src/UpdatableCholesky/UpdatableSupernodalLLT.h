@@ -534,8 +534,6 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
                     std::chrono::steady_clock::time_point start) {
     UpdateStatistics& st = m_lastUpdate;
     const bool all = route == UpdateRoute::Refactorization;
-    if (!all && !m_removedList.empty())  // (every update ends here: removed dofs stay exact identity)
-      for (Index s : dirty) m_numeric.clearRemoved(m_factor, s, m_removedPermuted.data());
     st.route = route;
     st.changedColumns = changedColumns;
     st.dirtySupernodes = all ? m_factor.count() : Index(dirty.size());
@@ -1661,6 +1659,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   } else {
     diff.commit(m_store);
     m_info = Success;
+    // (the signed folds split changes of update matrices by eigenvectors and rotate by hyperbolic
+    // rotations: the removed dofs' rows come out at 1e-17 where they were exactly zero)
+    if (route == UpdateRoute::Mixed && !m_removedList.empty())
+      for (Index s : dirty) m_numeric.clearRemoved(m_factor, s, m_removedPermuted.data());
     // (only the dirty supernodes gain or lose rows; recordUpdate() marks them to be substituted)
     m_solveCache.followStructure(m_factor, dirty);
   }
