@@ -262,6 +262,7 @@ template <typename Scalar, typename StorageIndex, typename Dense>
 double foldIntoColumns(Supernode<Scalar, StorageIndex>& node, Dense& W, Index first, Index count, Index start,
                        const char* removed) {
   const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, width = nc - start;
+  EIGEN_UNUSED_VARIABLE(m);  // (read by the BLAS path only)
   if (count == 0 || width <= 0) return 0;
 #ifdef EIGEN_UPDATABLE_CHOLESKY_USE_BLAS
   if constexpr (BlasTraits<Scalar>::Supported) {
@@ -331,11 +332,10 @@ double foldSources(Supernode<Scalar, StorageIndex>& node, Dense& W, const std::v
 /** \internal Removes the permuted columns \a removedNow (whose flags are already set in
   * \a removed, with those of earlier removals) from the factor by a low-rank update of the dirty
   * supernodes \a dirty (increasing, as from dirtySupernodes()), keeping the cached update
-  * matrices \a cache consistent. \returns the flops spent. */
+  * matrices consistent. \returns the flops spent. */
 template <typename Scalar, typename StorageIndex>
 double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumeric<Scalar, StorageIndex>& numeric,
                       const std::vector<Index>& dirty, const char* removed, UpdateWorkspace<Scalar>& ws) {
-  std::vector<UpdateBuffer<Scalar> >& cache = numeric.cache();
   typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
   std::vector<Dense>& carried = ws.carried;  // W passed from a supernode to its parent
   double flops = 0;
@@ -345,7 +345,6 @@ double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
     auto& node = f.nodes[s];
     const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
     Scalar* L = node.values.data();
-    Scalar* U = m > 0 ? cache[s].data() : nullptr;
     removedPositions.clear();
     removedColumns.clear();
     for (Index p = 0; p < nr; ++p)
@@ -384,23 +383,10 @@ double lowRankRemoval(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
         }
       }
     }
-    // 2. the removed dofs' rows and columns become those of the identity, in L, U and W
-    for (Index p : removedPositions) {
-      W.row(p).setZero();
-      if (p < nc) {
-        for (Index i = 0; i < nr; ++i) L[i + p * nr] = Scalar(0);
-        L[p + p * nr] = Scalar(1);
-      }
-      for (Index j = 0; j < (std::min)(p, nc); ++j) L[p + j * nr] = Scalar(0);
-      if (p >= nc) {
-        const Index u = p - nc;
-        for (Index i = 0; i < m; ++i) {
-          U[u + i * m] = Scalar(0);
-          U[i + u * m] = Scalar(0);
-        }
-        for (auto& c : numeric.pendingCorrections(s)) c.W.row(u).setZero();
-      }
-    }
+    // 2. the removed dofs' rows and columns become those of the identity, in L, U (and its
+    //    deferred corrections) and W
+    if (!removedPositions.empty()) numeric.clearRemoved(f, s, removed);
+    for (Index p : removedPositions) W.row(p).setZero();
     if (rank == 0) continue;
     // 3. fold W into the kept columns, [L(:,J) W] G = [L'(:,J) W'] with G unitary and W' zero on
     //    the supernode's own rows
