@@ -7,7 +7,9 @@
 // factor of that matrix, A^B, has unit columns at B (Appendix A). A column whose value changes
 // makes dirty its own supernode and, through symmetry, the supernodes of the columns where its
 // entries are assembled (its neighbours earlier in the elimination order); every ancestor of a
-// dirty supernode is dirty.
+// dirty supernode is dirty. A removed dof's row may also sit, in the factor's structure, in
+// supernodes outside those paths (amalgamation, a cut's duplicated pattern): supernodesHoldingRow()
+// finds them, so that the removal can make that row exactly zero there too.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_DOF_UPDATES_H
 #define EIGEN_UPDATABLE_CHOLESKY_DOF_UPDATES_H
