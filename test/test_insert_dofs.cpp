@@ -210,6 +210,7 @@ template <typename Cfg>
 int randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route, int steps, unsigned seed,
                    bool pureCuts = false) {
   typedef typename Cfg::FullMatrix FullMatrix;
+  seed += seedOffset();
   std::mt19937 g(seed);
   SplitGraph<typename Cfg::Scalar> G = graphOf<Cfg>(A0);
   typename Cfg::Solver llt;
@@ -1030,6 +1031,7 @@ namespace {
   * factorization and against SimplicialLLT on the cut matrix. */
 template <typename Cfg>
 void meshCutSession(const Eigen::MatrixXd& V0, const Eigen::MatrixXi& F0, int steps, unsigned seed) {
+  seed += seedOffset();
   typedef typename Cfg::FullMatrix FullMatrix;
   typedef typename Cfg::Scalar Scalar;
   std::mt19937 g(seed);

@@ -63,6 +63,7 @@ double lowRankTolerance() {
 /** Runs a random sequence of updates with one route and checks every step. */
 template <typename Cfg>
 void randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route, int steps, unsigned seed) {
+  seed += seedOffset();
   typedef typename Cfg::Scalar Scalar;
   typedef typename Cfg::StorageIndex StorageIndex;
   typedef Eigen::UpdatableSupernodalLLT<typename Cfg::MatrixType, Cfg::UpLo, GivenOrdering<StorageIndex>> Fresh;
