@@ -120,7 +120,10 @@ void randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route
     REQUIRE(llt.info() == Eigen::Success);
     const Eigen::UpdateStatistics& st = llt.lastUpdate();
     CHECK(st.flopFraction >= 0);
-    CHECK(st.flopFraction <= 1.0 + 1e-12);
+    // (a forced low-rank or mixed route may cost more than a refactorization: rank-k folds along a
+    // long path, e.g. the chain of a natural ordering, cost ~2k/bandwidth of it)
+    if (route != Eigen::UpdateRoute::LowRank && route != Eigen::UpdateRoute::Mixed)
+      CHECK(st.flopFraction <= 1.0 + 1e-12);
     CHECK(st.dirtySupernodes <= llt.supernodeCount());
     // fresh factorization of the current matrix in the same order
     typename Cfg::FullMatrix current = withIdentityRows<Cfg>(A, removed);

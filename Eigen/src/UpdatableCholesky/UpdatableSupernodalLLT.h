@@ -552,20 +552,26 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     * the matrix's pattern and their ancestors, but a supernode outside them may still hold a
     * removed row in its structure (amalgamation, or a cut's duplicated pattern) whose values are
     * zero only up to rounding (left by earlier folds). Those rows are zeroed too, and the
-    * supernodes whose blocks changed join \a dirty (increasing), so that a Dirichlet solve
-    * returns the known values exactly. Only reads the structure unless such a value is found. */
+    * supernodes whose blocks changed join \a dirty (increasing) with their ancestors up to the
+    * dirty path they hang from (the removed row's supernode), so that a Dirichlet solve returns
+    * the known values exactly and \a dirty stays closed under parents: the kept forward
+    * substitution passes a changed update vector up through those ancestors, and lastUpdate()
+    * counts what it substitutes again. Only reads the structure unless such a value is found. */
   void clearRemovedRowsOutside(const std::vector<StorageIndex>& removedNow, std::vector<Index>& dirty) {
-    std::vector<char>& mark = m_workspace.mark;
+    std::vector<char>& mark = m_workspace.mark;  // 1: dirty, 2: searched here (all 0 between calls)
     for (Index s : dirty) mark[s] = 1;
-    std::vector<Index> holding, stack;
+    std::vector<Index> holding, stack, cleared;
     for (StorageIndex b : removedNow) internal::updatable_cholesky::supernodesHoldingRow(m_factor, b, holding, stack);
     const std::size_t before = dirty.size();
     for (Index s : holding)
       if (!mark[s]) {
-        mark[s] = 1;
-        if (m_numeric.clearRemoved(m_factor, s, m_removedPermuted.data())) dirty.push_back(s);
+        mark[s] = 2;
+        if (m_numeric.clearRemoved(m_factor, s, m_removedPermuted.data())) cleared.push_back(s);
       }
-    for (Index s : holding) mark[s] = 0;
+    for (Index s : holding)
+      if (mark[s] == 2) mark[s] = 0;
+    for (Index s : cleared)  // (the walk ends at the removed row's supernode, dirty, at the latest)
+      internal::updatable_cholesky::markPathToRoot(m_factor, s, mark, dirty);
     for (Index s : dirty) mark[s] = 0;
     if (dirty.size() != before) std::sort(dirty.begin(), dirty.end());
   }
