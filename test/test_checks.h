@@ -20,21 +20,13 @@
 #define UC_TEST_CHECKS_H
 
 #include "test_matrices.h"
+#include "test_seed.h"
 
 #include <cstdlib>
 #include <sstream>
 #include <string>
 
 namespace uctest {
-
-/** Added to the seeds of the random update sequences (test_updates, test_insert_dofs): 0 unless
-  * the environment variable UC_TEST_SEED_OFFSET says otherwise, so that the same suites can be
-  * run on other sequences (e.g. `for o in 100 200 300; do UC_TEST_SEED_OFFSET=$o
-  * build/test/test_insert_dofs; done`) without changing what ctest runs. */
-inline unsigned seedOffset() {
-  const char* text = std::getenv("UC_TEST_SEED_OFFSET");
-  return text ? unsigned(std::strtoul(text, nullptr, 10)) : 0u;
-}
 
 /** B = A with its diagonal d_ii replaced by offset + scale*d_ii (A full, both triangles): the
   * matrix Eigen's setShift(offset, scale) factors. */
