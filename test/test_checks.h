@@ -22,7 +22,6 @@
 #include "test_matrices.h"
 #include "test_seed.h"
 
-#include <cstdlib>
 #include <sstream>
 #include <string>
 

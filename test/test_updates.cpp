@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <cmath>
 #include <random>
 
 namespace {
@@ -124,6 +125,8 @@ void randomSequence(const typename Cfg::FullMatrix& A0, Eigen::UpdateRoute route
     // long path, e.g. the chain of a natural ordering, cost ~2k/bandwidth of it)
     if (route != Eigen::UpdateRoute::LowRank && route != Eigen::UpdateRoute::Mixed)
       CHECK(st.flopFraction <= 1.0 + 1e-12);
+    else
+      CHECK(std::isfinite(st.flopFraction));
     CHECK(st.dirtySupernodes <= llt.supernodeCount());
     // fresh factorization of the current matrix in the same order
     typename Cfg::FullMatrix current = withIdentityRows<Cfg>(A, removed);
