@@ -32,21 +32,25 @@ struct GivenOrdering {
   }
 };
 
+/** The cotan Laplacian of (V, F) + 1e-2 I, compressed. */
+template <typename Cfg>
+typename Cfg::FullMatrix shiftedLaplacian(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  typedef typename Cfg::Scalar Scalar;
+  typename Cfg::FullMatrix A = Eigen::cotanLaplacian<Scalar, typename Cfg::StorageIndex>(V, F);
+  for (Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += Scalar(1e-2);
+  A.makeCompressed();
+  return A;
+}
+
 template <typename Cfg>
 typename Cfg::FullMatrix testLaplacian(unsigned seed) {
-  typedef typename Cfg::Scalar Scalar;
   Eigen::MatrixXd V;
   Eigen::MatrixXi F;
   if (seed % 2)
     Eigen::gridMesh(23, 19, V, F);
   else
     Eigen::icosphereMesh(2, V, F);
-  typename Cfg::FullMatrix L = Eigen::cotanLaplacian<Scalar, typename Cfg::StorageIndex>(V, F);
-  typename Cfg::FullMatrix I(L.rows(), L.cols());
-  I.setIdentity();
-  typename Cfg::FullMatrix A = L + I * Scalar(1e-2);
-  A.makeCompressed();
-  return A;
+  return shiftedLaplacian<Cfg>(V, F);
 }
 
 /** Tolerances: exact routes reproduce a fresh factorization to rounding, the low-rank route to
@@ -208,15 +212,115 @@ TEST_CASE_TEMPLATE("partial refactorization is bitwise a fresh factorization", C
   CHECK(sameFactorBitwise<Cfg>(llt, original));
 }
 
-TEST_CASE_TEMPLATE("removing most dofs: reduced fronts (paper 6.5)", Cfg, UC_CORE_CONFIGS) {
+TEST_CASE_TEMPLATE("updateColumns: a few changed columns are folded into the separators above them (route Mixed)", Cfg,
+                   UC_CORE_CONFIGS) {
   typedef typename Cfg::Scalar Scalar;
   typedef Eigen::UpdatableSupernodalLLT<typename Cfg::MatrixType, Cfg::UpLo, GivenOrdering<typename Cfg::StorageIndex>> Fresh;
   Eigen::MatrixXd V;
   Eigen::MatrixXi F;
+  Eigen::gridMesh(48, 40, V, F);
+  const typename Cfg::FullMatrix A = shiftedLaplacian<Cfg>(V, F);
+  const Index n = A.rows();
+  const int steps = Cfg::isPrimary ? 12 : 6;
+  for (Eigen::UpdateRoute route :
+       {Eigen::UpdateRoute::Automatic, Eigen::UpdateRoute::Mixed, Eigen::UpdateRoute::PartialRefactorization}) {
+    CAPTURE(int(route));
+    std::mt19937 g(11 + seedOffset());
+    typename Cfg::Solver llt;
+    llt.setThreadCount(1);
+    llt.setUpdateCaching(true);
+    llt.compute(toInput<Cfg>(A));
+    REQUIRE(llt.info() == Eigen::Success);
+    llt.setUpdateRoute(route);
+    typename Cfg::FullMatrix current = A;
+    int folded = 0;
+    for (int step = 0; step < steps; ++step) {
+      CAPTURE(step);
+      // a positive semidefinite change (stays positive definite): the diagonal of a few columns
+      // grows, or an edge (i, j) changes by d with |d| added to both diagonals, |d| (e_i ± e_j)(e_i ± e_j)^H
+      std::vector<int> cols;
+      if (step % 2 == 0) {
+        const int count = 1 + int(g() % 4);
+        for (int k = 0; k < count; ++k) {
+          const int c = int(g() % n);
+          if (std::find(cols.begin(), cols.end(), c) == cols.end()) cols.push_back(c);
+        }
+        for (int c : cols) current.coeffRef(c, c) += Scalar(0.5) * current.coeff(c, c);
+      } else {
+        const int j = int(g() % n);
+        typename Cfg::FullMatrix::InnerIterator it(current, j);
+        while (it && (it.row() == j || std::abs(it.value()) == 0)) ++it;  // a non-zero off the diagonal
+        REQUIRE(it);  // (a grid's diagonal edges have zero cotan weights; the others do not)
+        const int i = int(it.row());
+        const Scalar d = Scalar(step % 4 == 1 ? 0.3 : -0.3) * it.value();
+        current.coeffRef(i, j) += d;
+        current.coeffRef(j, i) += d;
+        current.coeffRef(i, i) += Scalar(std::abs(d));
+        current.coeffRef(j, j) += Scalar(std::abs(d));
+        cols.push_back(j);  // (not cols = {j, i}: GCC 12 warns wrongly on that vector assignment)
+        cols.push_back(i);
+      }
+      llt.updateColumns(toInput<Cfg>(current), cols);
+      REQUIRE(llt.info() == Eigen::Success);
+      const Eigen::UpdateStatistics& st = llt.lastUpdate();
+      folded += st.route == Eigen::UpdateRoute::Mixed;
+      CHECK(st.changedColumns == Index(cols.size()));
+      if (route == Eigen::UpdateRoute::PartialRefactorization) CHECK(st.route == route);
+      Fresh fresh;
+      fresh.ordering().pinv = llt.permutationPinv();
+      fresh.setThreadCount(1);
+      fresh.compute(toInput<Cfg>(current));
+      REQUIRE(fresh.info() == Eigen::Success);
+      const bool exact = st.route == Eigen::UpdateRoute::PartialRefactorization;
+      CHECK(factorDifference<Cfg>(llt, fresh) <= (exact ? exactTolerance<Cfg>() : lowRankTolerance<Cfg>()));
+      if (exact && Cfg::isPrimary) CHECK(sameFactorBitwise<Cfg>(llt, fresh));
+      std::mt19937 gb(step);
+      const typename Cfg::Dense b = randomDense<Cfg>(n, 2, gb);
+      const typename Cfg::Dense x = llt.solve(b);
+      CHECK(double((current * x - b).norm() / b.norm()) <= lowRankTolerance<Cfg>());
+    }
+    if (route == Eigen::UpdateRoute::Mixed) CHECK(folded == steps);
+    // a change of one diagonal entry below the root separator costs a rank-2 fold there, far
+    // less than refactoring it: the automatic route folds
+    if (route == Eigen::UpdateRoute::Automatic) CHECK(folded > 0);
+  }
+}
+
+TEST_CASE_TEMPLATE("updateColumns reads the values of the listed columns only", Cfg, uctest::d_int_col_lower_amd) {
+  typedef Eigen::UpdatableSupernodalLLT<typename Cfg::MatrixType, Cfg::UpLo, GivenOrdering<int>> Fresh;
+  const typename Cfg::FullMatrix A = testLaplacian<Cfg>(1);
+  typename Cfg::Solver llt;
+  llt.setThreadCount(1);
+  llt.compute(toInput<Cfg>(A));
+  REQUIRE(llt.info() == Eigen::Success);
+  // column 10 listed, column 300 (no neighbour of 10) changed too but not listed: the factor is
+  // that of A with column 10 changed only (the documented contract: values elsewhere are not read)
+  REQUIRE(A.coeff(300, 10) == 0.0);
+  typename Cfg::FullMatrix listedOnly = A, both = A;
+  listedOnly.coeffRef(10, 10) *= 2;
+  both.coeffRef(10, 10) *= 2;
+  both.coeffRef(300, 300) *= 3;
+  llt.updateColumns(toInput<Cfg>(both), std::vector<int>{10});
+  REQUIRE(llt.info() == Eigen::Success);
+  CHECK(llt.lastUpdate().changedColumns == 1);
+  Fresh fresh;
+  fresh.ordering().pinv = llt.permutationPinv();
+  fresh.setThreadCount(1);
+  fresh.compute(toInput<Cfg>(listedOnly));
+  CHECK(factorDifference<Cfg>(llt, fresh) <= lowRankTolerance<Cfg>());
+  // and restoreDofs gives back the rows of that matrix
+  llt.removeDofs(std::vector<int>{300});
+  llt.restoreDofs(std::vector<int>{300});
+  REQUIRE(llt.info() == Eigen::Success);
+  CHECK(factorDifference<Cfg>(llt, fresh) <= lowRankTolerance<Cfg>());
+}
+
+TEST_CASE_TEMPLATE("removing most dofs: reduced fronts (paper 6.5)", Cfg, UC_CORE_CONFIGS) {
+  typedef Eigen::UpdatableSupernodalLLT<typename Cfg::MatrixType, Cfg::UpLo, GivenOrdering<typename Cfg::StorageIndex>> Fresh;
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
   Eigen::gridMesh(36, 30, V, F);
-  typename Cfg::FullMatrix A = Eigen::cotanLaplacian<Scalar, typename Cfg::StorageIndex>(V, F);
-  for (Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += Scalar(1e-2);
-  A.makeCompressed();
+  const typename Cfg::FullMatrix A = shiftedLaplacian<Cfg>(V, F);
   const Index n = A.rows();
   const double x0 = V.col(0).minCoeff(), x1 = V.col(0).maxCoeff();
   // a region of 70% of the mesh, and a band that cuts the mesh into two pieces
@@ -401,6 +505,16 @@ TEST_CASE_TEMPLATE("bad update input gives a clear error and a usable object", C
     other.coeffRef(0, n - 1) = Scalar(0.001);
     other.coeffRef(n - 1, 0) = Scalar(0.001);
     llt.updateColumns(toInput<Cfg>(other), std::vector<int>{0});
+    CHECK(llt.info() == Eigen::InvalidInput);
+    stillSolvesA();
+    // the pattern is checked whole: also where no listed column is
+    llt.updateColumns(toInput<Cfg>(other), std::vector<int>{int(n / 2)});
+    CHECK(llt.info() == Eigen::InvalidInput);
+    stillSolvesA();
+    typename Cfg::FullMatrix fewer = A;  // an entry gone (not merely zero) far from the listed column
+    fewer.coeffRef(n - 1, n - 1) = Scalar(0);
+    fewer.prune([n](Index r, Index c, const Scalar&) { return r != c || r != n - 1; });
+    llt.updateColumns(toInput<Cfg>(fewer), std::vector<int>{0});
     CHECK(llt.info() == Eigen::InvalidInput);
     stillSolvesA();
   }

@@ -24,10 +24,12 @@ namespace Eigen {
 enum class UpdateRoute {
   Automatic,               ///< the cheapest route by the cost model (default)
   PartialRefactorization,  ///< recompute the dirty supernodes only (Algorithm 3); exact
-  LowRank,                 ///< removeDofs: fold L(I,B) into L(I,I) along the paths of B; insertDofs/mergeDofs: as Mixed
+  LowRank,                 ///< removeDofs: fold L(I,B) into L(I,I) along the paths of B; updateColumns/insertDofs/
+                           ///< mergeDofs: as Mixed; restoreDofs: as Automatic
   Refactorization,         ///< recompute every supernode
-  Mixed                    ///< removeDofs: low-rank below, partial refactorization of the top; insertDofs/mergeDofs:
-                           ///< each dirty supernode refactored or updated by signed low-rank folds (LowRankTopUpdate.h)
+  Mixed                    ///< removeDofs: low-rank below, partial refactorization of the top; updateColumns/
+                           ///< insertDofs/mergeDofs: each dirty supernode refactored or updated by signed low-rank
+                           ///< folds (LowRankTopUpdate.h); restoreDofs: as Automatic
 };
 
 /** \ingroup UpdatableCholesky_Module

@@ -206,7 +206,15 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
 
   /** The values of A changed in the columns \a columns (and, by symmetry, in the same rows);
     * \a matrix has the analysed pattern and is the new matrix. \a columns is any container of
-    * indices with size() and operator[] (std::vector<int>, VectorXi, ...). */
+    * indices with size() and operator[] (std::vector<int>, VectorXi, ...).
+    *
+    * The pattern of \a matrix is checked whole; its values are read only in the listed columns
+    * (and, by symmetry, where the other triangle holds their rows): an entry that changed
+    * elsewhere is not seen. The supernodes on the paths from the changed columns to the roots
+    * are refactored from the cached update matrices of the others (partial refactorization) or,
+    * where the cost model finds it cheaper, updated by signed low-rank folds of the change
+    * (route Mixed: a few changed columns below the large separators near the root then cost a
+    * fraction of refactoring those separators). */
   template <typename Indices>
   UpdatableSupernodalLLT& updateColumns(const MatrixType& matrix, const Indices& columns);
 
@@ -507,6 +515,10 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   /** insertDofs() with the outer vectors to compare given by m_insertChange (compareAll, hint). */
   template <typename Indices>
   UpdatableSupernodalLLT& insertCopies(const MatrixType& matrix, const Indices& origin);
+  /** insertCopies() once its input is checked: \a total dofs, dof i >= n a copy of originOf(i).
+    * With total == n (no copies) it is updateColumns(): only values change. */
+  template <typename OriginOf>
+  void replaceWithCopies(const MatrixType& matrix, Index total, OriginOf&& originOf);
   /** mergeDofs() with the outer vectors to compare given by m_mergeChange (compareAll, hint). */
   template <typename Indices>
   UpdatableSupernodalLLT& mergeCopies(const MatrixType& matrix, const Indices& origin);
@@ -809,17 +821,17 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   if (!beginUpdate()) return *this;
   MatrixType copy;
   const MatrixType* pa = compressedInput(a, copy);
-  std::vector<StorageIndex> cols;
   const char* why = nullptr;
   if (!m_store.template matchesPattern<UpLo_>(*pa) ||
-      !internal::updatable_cholesky::checkIndices(columns, m_n, cols, why)) {
+      !internal::updatable_cholesky::checkIndices(columns, m_n, m_insertChange.hint, why)) {
     m_info = InvalidInput;
     return *this;
   }
-  for (auto& c : cols) c = m_P.indices()[c];
-  std::vector<Scalar> previous(m_store.values);
-  m_store.template copyValues<UpLo_>(*pa);
-  applyUpdate(cols, false, [&]() { m_store.values.swap(previous); });
+  // an insertion of no copies told the changed dofs: only their columns (and those holding their
+  // rows) are read, and the dirty supernodes are refactored or, where cheaper, updated by
+  // low-rank folds of the change (route Mixed), as for a cut
+  m_insertChange.compareAll = false;
+  replaceWithCopies(*pa, m_n, [](Index) { return StorageIndex(-1); });
   return *this;
 }
 
@@ -908,6 +920,15 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     m_info = InvalidInput;
     return *this;
   }
+  replaceWithCopies(a, total, [&origin](Index i) { return StorageIndex(origin[i]); });
+  return *this;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename OriginOf>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceWithCopies(const MatrixType& a, Index total,
+                                                                              OriginOf&& originOf) {
+  const Index n = m_n;
   DofChange& change = m_insertChange;
   change.merging = false;
   change.touched.clear();
@@ -924,7 +945,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   auto& relabel = change.relabel;
   relabel.copies.resize(n, 0);  // (zero between calls)
   for (Index i = n; i < total; ++i) {
-    const StorageIndex o = StorageIndex(origin[i]);
+    const StorageIndex o = originOf(i);
     change.oldOfNew[i] = StorageIndex(-1);
     change.preStart[i] = StorageIndex(i);
     change.preList[i] = o;  // a copy stands for its origin
@@ -939,7 +960,6 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   for (std::size_t k = 0; k < originPositions.size(); ++k) originPositions[k] = perm[change.touched[k]];
   replaceDofs(a, change);
   for (StorageIndex po : originPositions) relabel.copies[po] = change.placed[po] = 0;  // zero again
-  return *this;
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
