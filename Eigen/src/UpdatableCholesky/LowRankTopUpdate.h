@@ -1,6 +1,7 @@
-// LowRankTopUpdate.h — after a cut or a merge, dirty supernodes are updated by signed low-rank
-// folds instead of being refactored where that is cheaper (insertDofs/mergeDofs, paper §4.2 /
-// Algorithm 4, with Davis & Hager's up- and downdates on the supernodal factor, DESIGN §3).
+// LowRankTopUpdate.h — after a cut, a merge or a change of values, dirty supernodes are updated by
+// signed low-rank folds instead of being refactored where that is cheaper (insertDofs/mergeDofs,
+// paper §4.2 / Algorithm 4, and updateColumns, an insertion without copies; Davis & Hager's up-
+// and downdates on the supernodal factor, DESIGN §3).
 //
 // A structural change makes the supernodes on the paths from the changed columns to the roots
 // dirty. Each is refactored (Algorithm 4) or folded. A folded one starts from its previous block,

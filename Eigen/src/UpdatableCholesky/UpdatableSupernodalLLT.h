@@ -4,7 +4,8 @@
 // storage (SupernodalFactor.h), the input assembly (MatrixAssembly.h), the numeric
 // factorization (SupernodalNumeric.h) and the solve (SupernodalSolve.h). Paper §3.
 // It also drives the in-place updates: updateColumns/removeDofs/restoreDofs (paper §3.3 and §4.1,
-// Algorithm 3) and insertDofs/mergeDofs (§4.2, Algorithm 4) check their input here, pick the
+// Algorithm 3) and insertDofs/mergeDofs (§4.2, Algorithm 4; updateColumns is carried out as an
+// insertion without copies) check their input here, pick the
 // update route and call DofUpdates.h, LowRankRemoval.h, DofInsertion.h, DofInsertionInput.h and
 // LowRankTopUpdate.h. solveDirichlet (§4.1) is here too, and solves use the forward
 // substitution kept between them (IncrementalForwardSolve.h).
