@@ -69,6 +69,12 @@ double lowRankRemovalFlops(const SupernodalFactor<Scalar, StorageIndex>& f, cons
   return total;
 }
 
+/** \internal The fixed cost of folding into one supernode (gathering the columns passed up and
+  * ordering them, the small dense objects of the fold, clearing its removed rows), in flops of a
+  * refactorization: regions of thousands of small supernodes (an ARAP region of interest) are
+  * folded at a cost that their flops do not show. */
+constexpr double RemovalFoldOverheadFlops = 16000.0;
+
 /** \internal The cheapest mix of the two exact-enough routes for a removal: the dirty supernodes
   * split into a lower part updated by low-rank folds and a top part (closed under taking parents)
   * refactored from the cached update matrices, which the folds keep valid. A dynamic program over
@@ -87,7 +93,7 @@ double mixedRemovalPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const s
   double total = 0;
   for (Index k = 0; k < count; ++k) {  // children before parents
     const Index s = dirty[k];
-    lowRank[k] = ws.cost[s] + lowRankBelow[k];
+    lowRank[k] = ws.cost[s] + RemovalFoldOverheadFlops + lowRankBelow[k];
     const double again = frontFlops(f.nodes[s], removed) + bestBelow[k];
     recompute[k] = again < lowRank[k];
     best[k] = recompute[k] ? again : lowRank[k];

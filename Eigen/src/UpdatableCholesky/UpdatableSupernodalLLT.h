@@ -561,7 +561,9 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     else
       m_solveCache.markChanged(dirty);
   }
-  /** After removeDofs(): the dirty supernodes are those of the removed columns' row subtrees in
+  /** For removeDofs(), before a partial or mixed refactorization (which reads the clean
+    * supernodes' cached update matrices) or after the low-rank folds: the dirty supernodes are
+    * those of the removed columns' row subtrees in
     * the matrix's pattern and their ancestors, but a supernode outside them may still hold a
     * removed row in its structure (amalgamation, or a cut's duplicated pattern) whose values are
     * zero only up to rounding (left by earlier folds). Those rows are zeroed too, and the
@@ -569,12 +571,29 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     * dirty path they hang from (the removed row's supernode), so that a Dirichlet solve returns
     * the known values exactly and \a dirty stays closed under parents: the kept forward
     * substitution passes a changed update vector up through those ancestors, and lastUpdate()
-    * counts what it substitutes again. Only reads the structure unless such a value is found. */
+    * counts what it substitutes again. Only reads the structure unless such a value is found:
+    * the row subtree of each removed dof, or, with more removed dofs than supernodes, the rows of
+    * every clean supernode once. */
   void clearRemovedRowsOutside(const std::vector<StorageIndex>& removedNow, std::vector<Index>& dirty) {
     std::vector<char>& mark = m_workspace.mark;  // 1: dirty, 2: searched here (all 0 between calls)
     for (Index s : dirty) mark[s] = 1;
     std::vector<Index> holding, stack, cleared;
-    for (StorageIndex b : removedNow) internal::updatable_cholesky::supernodesHoldingRow(m_factor, b, holding, stack);
+    const Index count = m_factor.count();
+    if (Index(removedNow.size()) > count) {
+      // more removed dofs than supernodes (a region constrained, as in ARAP): their row-subtree
+      // searches would walk most of the tree again and again, so the clean supernodes' rows are
+      // read once instead (a removed row there, of this call or an earlier one, is one to clear)
+      const char* removed = m_removedPermuted.data();
+      for (Index s = 0; s < count; ++s) {
+        if (mark[s]) continue;
+        const auto& node = m_factor.nodes[s];
+        Index held = 0;  // (counted without an early exit: it vectorizes)
+        for (Index k = node.ncols; k < node.nrows(); ++k) held += removed[node.rows[k]] != 0;
+        if (held > 0) holding.push_back(s);
+      }
+    } else {
+      for (StorageIndex b : removedNow) internal::updatable_cholesky::supernodesHoldingRow(m_factor, b, holding, stack);
+    }
     const std::size_t before = dirty.size();
     for (Index s : holding)
       if (!mark[s]) {
@@ -777,6 +796,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
     return;
   }
   if (route == UpdateRoute::Mixed) {  // folds below, then the top refactored from the caches they keep valid
+    // the removed rows that earlier folds left at rounding level in clean supernodes are cleared
+    // first: the top's refactorization reads those supernodes' cached update matrices
+    std::vector<Index> changed = dirty;  // and the supernodes whose blocks the clearing changed
+    clearRemovedRowsOutside(permutedColumns, changed);
     double flops = lowRankRemoval(m_factor, m_numeric, lowPart, m_removedPermuted.data(), m_workspace);
     for (Index s : lowPart) m_workspace.carried[s] = typename UpdateWorkspace<Scalar>::Dense();
     flops += supernodeFlops(m_factor, topPart, removedFlags);
@@ -788,12 +811,14 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
       m_factorizationIsOk = m_numeric.factorize(m_factor, numericInput(), threadCount()) < 0;
       m_solveCache.invalidate();
       m_info = NumericalIssue;
-    } else {
-      clearRemovedRowsOutside(permutedColumns, dirty);
     }
-    recordUpdate(route, Index(permutedColumns.size()), dirty, flops, start);
+    recordUpdate(route, Index(permutedColumns.size()), changed, flops, start);
     return;
   }
+  // a partial refactorization of a removal reads the clean supernodes' cached update matrices:
+  // their removed rows are cleared first (as above)
+  std::vector<Index> changed = dirty;
+  if (isRemoval && route != UpdateRoute::Refactorization) clearRemovedRowsOutside(permutedColumns, changed);
   auto run = [&]() {
     m_numeric.setCacheUpdates(true);
     return route == UpdateRoute::Refactorization ? m_numeric.factorize(m_factor, numericInput(), threadCount())
@@ -809,9 +834,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
     m_info = NumericalIssue;
   } else {
     m_info = Success;
-    if (isRemoval && route != UpdateRoute::Refactorization) clearRemovedRowsOutside(permutedColumns, dirty);
   }
-  recordUpdate(route, Index(permutedColumns.size()), dirty,
+  recordUpdate(route, Index(permutedColumns.size()), changed,
                route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops, start);
 }
 
