@@ -6,6 +6,7 @@
 #define UPDATABLE_CHOLESKY_BENCH_BENCHREPORT_H
 
 #include <Eigen/SparseCore>
+#include <Eigen/UpdatableCholesky>
 #include <unsupported/Eigen/MeshTools>
 
 #include <algorithm>
@@ -117,6 +118,20 @@ inline bool parseInt(const std::string& text, int& value)
   catch (const std::exception&)
   {
     return false;
+  }
+}
+
+/** \returns a short name of an update route of UpdatableSupernodalLLT. */
+inline std::string routeName(Eigen::UpdateRoute route)
+{
+  switch (route)
+  {
+  case Eigen::UpdateRoute::Automatic: return "Automatic";
+  case Eigen::UpdateRoute::PartialRefactorization: return "Partial";
+  case Eigen::UpdateRoute::LowRank: return "LowRank";
+  case Eigen::UpdateRoute::Refactorization: return "Refactor";
+  case Eigen::UpdateRoute::Mixed: return "Mixed";
+  default: return "route" + std::to_string(int(route));
   }
 }
 

@@ -74,6 +74,7 @@ using Ordering = bench::FixedOrdering<int>;
 using Permutation = Ordering::PermutationType;
 using OursLLT = Eigen::UpdatableSupernodalLLT<SpMat, Eigen::Lower, Ordering>;
 using bench::csvNumber;
+using bench::routeName;
 using bench::fmt;
 using bench::fmtCount;
 using bench::fmtFraction;
@@ -89,20 +90,6 @@ constexpr double kRelativeTolerance = 1e-8;
 /** Largest accepted backward error of our solves (the references). */
 constexpr double kBackwardTolerance = 1e-10;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-/** \returns a short name of an update route. */
-std::string routeName(Eigen::UpdateRoute route)
-{
-  switch (route)
-  {
-  case Eigen::UpdateRoute::Automatic: return "Automatic";
-  case Eigen::UpdateRoute::PartialRefactorization: return "Partial";
-  case Eigen::UpdateRoute::LowRank: return "LowRank";
-  case Eigen::UpdateRoute::Refactorization: return "Refactor";
-  case Eigen::UpdateRoute::Mixed: return "Mixed";
-  default: return "route" + std::to_string(int(route));
-  }
-}
 
 /** \returns Laplacian + kShift I of a mesh (with \a byDiagonal: + kShift diag(Laplacian), which a
   * cut shares out between an origin and its copies as it does the Laplacian), both triangles

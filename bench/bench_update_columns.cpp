@@ -66,16 +66,6 @@ double backwardError(const SpMat& A, double normA, const Eigen::VectorXd& x, con
   return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
 
-const char* routeName(Eigen::UpdateRoute route) {
-  switch (route) {
-    case Eigen::UpdateRoute::PartialRefactorization: return "Partial";
-    case Eigen::UpdateRoute::LowRank: return "LowRank";
-    case Eigen::UpdateRoute::Refactorization: return "Refactor";
-    case Eigen::UpdateRoute::Mixed: return "Mixed";
-    default: return "Automatic";
-  }
-}
-
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
 }  // namespace
@@ -204,7 +194,7 @@ int main(int argc, char** argv) {
           ms[m].push_back(watch.ms());
           if (m == OursAuto) {
             flopFraction = std::max(flopFraction, solver.lastUpdate().flopFraction);
-            route = routeName(solver.lastUpdate().route);
+            route = bench::routeName(solver.lastUpdate().route);
           }
           solver.updateColumns(A, cols);  // back to A (untimed)
           if (solver.info() != Eigen::Success) x.resize(0);
