@@ -1,6 +1,8 @@
 // The solver's settings, each result compared with SimplicialLLT: setShift(offset, scale), which
 // like SimplicialLLT's maps every diagonal coefficient d_ii to offset + scale*d_ii, also with
 // structurally missing diagonal entries;
+// the updates keep the shift of the factorization they update (a new one takes effect at the next
+// factorize());
 // setThreadCount (1, 2 and 4 threads give the same factor to rounding, and one thread count
 // always the same bits); setRelaxation (fundamental supernodes only, CHOLMOD's defaults,
 // everything amalgamated); ordering() (the instance analyzePattern uses; factorize does not
@@ -112,6 +114,52 @@ TEST_CASE_TEMPLATE("setShift with structurally missing diagonal entries", Cfg, U
   o.offset = maxRowSum + 1;
   computeAndCheck<Cfg>(offDiagonal, Storage::Full, o);
   computeAndCheck<Cfg>(offDiagonal, Storage::TriangleOnly, o);
+}
+
+TEST_CASE_TEMPLATE("setShift between updates: the updates keep the factor's shift, factorize() takes the new one", Cfg,
+                   UC_CORE_CONFIGS) {
+  typedef typename Cfg::Scalar Scalar;
+  typedef typename Cfg::RealScalar Real;
+  typedef typename Cfg::FullMatrix FullMatrix;
+  FullMatrix A = Cfg::fillReducing ? treeMatrix<Cfg>(40, 30, 4) : treeMatrix<Cfg>(20, 15, 4);
+  const Index n = A.rows();
+  typename Cfg::Solver llt;
+  llt.setShift(Real(0.5), Real(2));
+  llt.compute(toInput<Cfg>(A));
+  REQUIRE(llt.info() == Eigen::Success);
+  CheckOptions first;
+  first.offset = 0.5;
+  first.scale = 2;
+  // value changes on the diagonal of a few columns, before and after a new shift is set: the
+  // folds and partial refactorizations change the factor of the first shift's matrix
+  auto change = [&](std::vector<int> columns) {
+    for (int j : columns) A.coeffRef(j, j) += Scalar(Real(1));
+    llt.updateColumns(toInput<Cfg>(A), columns);
+    REQUIRE(llt.info() == Eigen::Success);
+  };
+  change({3, int(n / 2)});
+  llt.setShift(Real(4), Real(1));
+  for (Eigen::UpdateRoute route : {Eigen::UpdateRoute::Automatic, Eigen::UpdateRoute::Mixed,
+                                   Eigen::UpdateRoute::PartialRefactorization}) {
+    llt.setUpdateRoute(route);
+    change({int(n / 3), int(n / 3) + 1, int(n - 2)});
+    typename Cfg::Reference ref;
+    computeReference<Cfg>(ref, toInput<Cfg>(A), first.offset, first.scale);
+    checkAgainstReference<Cfg>(llt, A, ref, first);
+    const std::vector<int> dofs = {int(n / 4), int(n / 4) + 2, int(n - 1)};
+    llt.removeDofs(dofs);
+    REQUIRE(llt.info() == Eigen::Success);
+    llt.restoreDofs(dofs);
+    REQUIRE(llt.info() == Eigen::Success);
+    checkAgainstReference<Cfg>(llt, A, ref, first);
+  }
+  // the next factorization takes the shift set last
+  llt.factorize(toInput<Cfg>(A));
+  typename Cfg::Reference ref;
+  computeReference<Cfg>(ref, toInput<Cfg>(A), 4, 1);
+  CheckOptions second;
+  second.offset = 4;
+  checkAgainstReference<Cfg>(llt, A, ref, second);
 }
 
 TEST_CASE_TEMPLATE("thread counts 1 and 2 give the same answer", Cfg, UC_CORE_CONFIGS) {

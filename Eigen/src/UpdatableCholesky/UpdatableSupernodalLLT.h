@@ -159,7 +159,9 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
 
   /** Sets the shift of the diagonal used by the next factorizations, as SimplicialLLT does:
     * every diagonal coefficient d_ii becomes \f$ offset + scale \cdot d_{ii} \f$ (off-diagonal
-    * coefficients are not scaled). \returns a reference to *this. */
+    * coefficients are not scaled). The updates (updateColumns(), removeDofs(), insertDofs(), ...)
+    * keep the shift of the factorization they update: a new shift takes effect at the next
+    * compute() or factorize(). \returns a reference to *this. */
   UpdatableSupernodalLLT& setShift(const RealScalar& offset, const RealScalar& scale = 1) {
     m_shiftOffset = offset;
     m_shiftScale = scale;
@@ -401,8 +403,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     m_factorizationIsOk = false;
     m_n = 0;
     m_maxRows = 0;
-    m_shiftOffset = 0;
-    m_shiftScale = 1;
+    m_shiftOffset = m_factoredOffset = 0;
+    m_shiftScale = m_factoredScale = 1;
     m_threads = 0;
     m_failedColumn = -1;
     m_sparseLIsValid = false;
@@ -428,6 +430,9 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   Index m_n, m_failedColumn;
   Index m_maxRows;  ///< at least the rows of any supernode (the solve's workspace), kept by the updates
   RealScalar m_shiftOffset, m_shiftScale;
+  /** the shift of the factor held: set by factorize(), kept by the updates (which change a factor
+    * of offset + scale d on the diagonal, whatever setShift() said since) */
+  RealScalar m_factoredOffset, m_factoredScale;
   int m_threads;
   mutable CholMatrixType m_sparseL;
   mutable bool m_sparseLIsValid;
@@ -448,8 +453,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   internal::updatable_cholesky::NumericInput<Scalar> numericInput() const {
     internal::updatable_cholesky::NumericInput<Scalar> input;
     input.values = m_store.values.data();
-    input.offset = m_shiftOffset;
-    input.scale = m_shiftScale;
+    input.offset = m_factoredOffset;
+    input.scale = m_factoredScale;
     input.removed = m_removedList.empty() ? nullptr : m_removedPermuted.data();
     return input;
   }
@@ -530,7 +535,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     * right after its origin), from the copies counted in \a change. */
   void buildInsertionLayout(DofChange& change);
   /** After the input diff of replaceDofs(): the dofs (new numbering) where the cut matrix, glued
-    * back, differs from the uncut one (internal::updatable_cholesky::gluingMismatches()). */
+    * back, differs from the uncut one (internal::updatable_cholesky::gluingMismatches()), both as
+    * factored (setShift(): with an offset, every origin). */
   const std::vector<StorageIndex>& gluingMismatchesOf(const DofChange& change);
   /** After the input diff and the relabeling of an insertion or a merge: splits the input change
     * of each \a folded supernode's own columns (new minus previous matrix; a copy's previous
@@ -714,6 +720,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::factorize(const Matr
     return;
   }
   m_store.template copyValues<UpLo_>(*pa);
+  m_factoredOffset = m_shiftOffset;  // (the updates of this factor keep its shift)
+  m_factoredScale = m_shiftScale;
   const Index bad = m_numeric.factorize(m_factor, numericInput(), threadCount());
   if (bad >= 0) {
     m_info = NumericalIssue;
@@ -1205,6 +1213,18 @@ const std::vector<typename MatrixType_::StorageIndex>& UpdatableSupernodalLLT<Ma
     gluingMismatches<rowMajor>(previous, oldRanges, [&change](Index i) { return change.keptOf(i); }, m_store,
                                newRanges, diff.mismatch, diff.mismatchList, diff.gluing);
   }
+  // the matrices factored have offset + scale d on their diagonals (setShift()): with an offset,
+  // the cut's diagonals glued back hold it once more per copy at each origin
+  if (m_factoredOffset != RealScalar(0)) {
+    auto flag = [&diff](Index g) {
+      if (!diff.mismatch[g]) diff.mismatchList.push_back(StorageIndex(g));
+      diff.mismatch[g] = 2;
+    };
+    if (!change.merging)
+      for (Index x = n; x < total; ++x) flag(change.preList[x]);
+    else
+      for (StorageIndex i : change.merged) flag(change.keptOf(i));
+  }
   return diff.mismatchList;
 }
 
@@ -1241,7 +1261,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges
     entries.push_back(Entry{t, StorageIndex(pi), StorageIndex(pj), value});
   };
   // the entries of an outer vector \a outer of the new store (\a previous false) or of the
-  // previous one, added with their sign
+  // previous one, added with their sign, as factored: a diagonal entry d is offset + scale d
+  // (setShift()), whose offset cancels between the two matrices (a diagonal entry the store
+  // lacks is factored as the offset alone)
+  const RealScalar offset = m_factoredOffset, scale = m_factoredScale;
   auto addRange = [&](const InputStore<Scalar, StorageIndex>& store, Index outer, Index begin, Index end, bool previous) {
     auto dof = [&](Index d) {  // -> the folding numbering
       if (previousStructure) return previous ? d : Index(change.oldOfNew[d]);
@@ -1250,38 +1273,39 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges
     const Index x = dof(outer);
     for (Index p = begin; p < end; ++p) {
       const Index y = dof(Index(store.inner[p]));
-      const Scalar value = previous ? Scalar(-store.values[p]) : store.values[p];
+      const Scalar stored = Index(store.inner[p]) == outer ? Scalar(scale * store.values[p]) : store.values[p];
+      const Scalar value = previous ? Scalar(-stored) : stored;
       if (rowMajor)
         add(x, y, value);
       else
         add(y, x, value);
     }
   };
-  // the diagonal entry of outer vector x (its range [begin, end)) when positive, else 1
-  auto positiveDiagonal = [](const InputStore<Scalar, StorageIndex>& store, Index x, Index begin, Index end) {
-    RealScalar pivot = RealScalar(1);
+  // the diagonal entry of outer vector x (its range [begin, end)) as factored (offset + scale d,
+  // the offset alone when the store lacks it) when positive, else 1
+  auto positiveDiagonal = [offset, scale](const InputStore<Scalar, StorageIndex>& store, Index x, Index begin, Index end) {
+    RealScalar d = offset;
     for (Index p = begin; p < end; ++p)
-      if (Index(store.inner[p]) == x) {
-        const RealScalar d = numext::real(store.values[p]);
-        if (d > RealScalar(0) && d < NumTraits<RealScalar>::highest()) pivot = d;
-      }
-    return pivot;
+      if (Index(store.inner[p]) == x) d = offset + scale * numext::real(store.values[p]);
+    return d > RealScalar(0) && d < NumTraits<RealScalar>::highest() ? d : RealScalar(1);
   };
   const InputStore<Scalar, StorageIndex>& previousStore = diff.inPlace ? m_store : diff.spare;
   // the placeholders: each copy's previous column (insertion) and each merged dof's new one is a
-  // diagonal entry, that of its matrix when positive (so that the change has no diagonal part
-  // there), else 1
+  // diagonal entry, that of its matrix as factored when positive (so that the change has no
+  // diagonal part there), else 1; addRange() leaves out the offset of the copy's (merged dof's)
+  // factored diagonal, added here
   copyPivots.clear();
   if (!previousStructure)
     for (Index x = n; x < total; ++x) {
       const RealScalar pivot = positiveDiagonal(m_store, x, m_store.begin[x], m_store.end[x]);
       copyPivots.emplace_back(perm[x], pivot);
-      add(x, x, Scalar(-pivot));
+      add(x, x, Scalar(offset - pivot));
       addRange(m_store, x, m_store.begin[x], m_store.end[x], false);
     }
   std::sort(copyPivots.begin(), copyPivots.end());
   auto mergedPlaceholder = [&](Index o, Index begin, Index end) {  // (merge: a merged dof's new column)
-    if (previousStructure && change.newOfOld[o] < 0) add(o, o, Scalar(positiveDiagonal(previousStore, o, begin, end)));
+    if (previousStructure && change.newOfOld[o] < 0)
+      add(o, o, Scalar(positiveDiagonal(previousStore, o, begin, end) - offset));
   };
   if (diff.inPlace) {  // (a merged dof's outer vector is among the rewrites)
     for (const auto& r : diff.rewrites) {
