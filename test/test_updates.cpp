@@ -3,10 +3,10 @@
 // factorization of the current matrix (A with the removed rows and columns replaced by those of
 // the identity) with the same permutation: equal to rounding for the exact routes, to solving
 // accuracy for the low-rank route; the solves that reuse the previous forward substitution are
-// bitwise full ones. Also Dirichlet solves (B empty, random, all; 1 to 5
-// right-hand sides), and every error path (bad indices,
-// pattern mismatch, an update that is not positive definite or holds NaN or infinity) leaving a
-// usable object.
+// bitwise full ones. Also the folding routes of updateColumns and restoreDofs (route Mixed),
+// Dirichlet solves (B empty, random, all; 1 to 5 right-hand sides), and every error path (bad
+// indices, pattern mismatch, an update or a restore that is not positive definite, NaN or
+// infinity) leaving a usable object.
 #include "test_checks.h"
 #include "test_config.h"
 #include "test_matrices.h"
@@ -63,6 +63,26 @@ double exactTolerance() {
 template <typename Cfg>
 double lowRankTolerance() {
   return 1e4 * double(Eigen::NumTraits<typename Cfg::RealScalar>::epsilon());
+}
+
+/** The shifted Laplacian of a 48 x 40 grid: separators large enough above a few dofs that folding
+  * a small change into them beats refactoring them. */
+template <typename Cfg>
+typename Cfg::FullMatrix foldingGrid() {
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  Eigen::gridMesh(48, 40, V, F);
+  return shiftedLaplacian<Cfg>(V, F);
+}
+
+/** Factors \a A on one thread with update caching on, then sets \a route for the updates. */
+template <typename Cfg>
+void startCached(typename Cfg::Solver& llt, const typename Cfg::FullMatrix& A, Eigen::UpdateRoute route) {
+  llt.setThreadCount(1);
+  llt.setUpdateCaching(true);
+  llt.compute(toInput<Cfg>(A));
+  REQUIRE(llt.info() == Eigen::Success);
+  llt.setUpdateRoute(route);
 }
 
 /** Runs a random sequence of updates with one route and checks every step. */
@@ -216,10 +236,7 @@ TEST_CASE_TEMPLATE("updateColumns: a few changed columns are folded into the sep
                    UC_CORE_CONFIGS) {
   typedef typename Cfg::Scalar Scalar;
   typedef Eigen::UpdatableSupernodalLLT<typename Cfg::MatrixType, Cfg::UpLo, GivenOrdering<typename Cfg::StorageIndex>> Fresh;
-  Eigen::MatrixXd V;
-  Eigen::MatrixXi F;
-  Eigen::gridMesh(48, 40, V, F);
-  const typename Cfg::FullMatrix A = shiftedLaplacian<Cfg>(V, F);
+  const typename Cfg::FullMatrix A = foldingGrid<Cfg>();
   const Index n = A.rows();
   const int steps = Cfg::isPrimary ? 12 : 6;
   for (Eigen::UpdateRoute route :
@@ -227,11 +244,7 @@ TEST_CASE_TEMPLATE("updateColumns: a few changed columns are folded into the sep
     CAPTURE(int(route));
     std::mt19937 g(11 + seedOffset());
     typename Cfg::Solver llt;
-    llt.setThreadCount(1);
-    llt.setUpdateCaching(true);
-    llt.compute(toInput<Cfg>(A));
-    REQUIRE(llt.info() == Eigen::Success);
-    llt.setUpdateRoute(route);
+    startCached<Cfg>(llt, A, route);
     typename Cfg::FullMatrix current = A;
     int folded = 0;
     for (int step = 0; step < steps; ++step) {
@@ -283,6 +296,90 @@ TEST_CASE_TEMPLATE("updateColumns: a few changed columns are folded into the sep
     // a change of one diagonal entry below the root separator costs a rank-2 fold there, far
     // less than refactoring it: the automatic route folds
     if (route == Eigen::UpdateRoute::Automatic) CHECK(folded > 0);
+  }
+}
+
+TEST_CASE_TEMPLATE("restoreDofs folds the restored rows and columns into the separators above them (route Mixed)", Cfg,
+                   UC_CORE_CONFIGS) {
+  typedef Eigen::UpdatableSupernodalLLT<typename Cfg::MatrixType, Cfg::UpLo, GivenOrdering<typename Cfg::StorageIndex>> Fresh;
+  const typename Cfg::FullMatrix A = foldingGrid<Cfg>();
+  const Index n = A.rows();
+  const int steps = Cfg::isPrimary ? 16 : 8;
+  // || L - L_fresh || / || L_fresh ||, L_fresh a fresh factorization of \a current in llt's order
+  auto differenceFromFresh = [](const typename Cfg::Solver& llt, const typename Cfg::FullMatrix& current) {
+    Fresh fresh;
+    fresh.ordering().pinv = llt.permutationPinv();
+    fresh.setThreadCount(1);
+    fresh.compute(toInput<Cfg>(current));
+    REQUIRE(fresh.info() == Eigen::Success);
+    return factorDifference<Cfg>(llt, fresh);
+  };
+  for (Eigen::UpdateRoute route : {Eigen::UpdateRoute::Automatic, Eigen::UpdateRoute::Mixed, Eigen::UpdateRoute::LowRank,
+                                   Eigen::UpdateRoute::PartialRefactorization}) {
+    CAPTURE(int(route));
+    std::mt19937 g(13 + seedOffset());
+    typename Cfg::Solver llt;
+    startCached<Cfg>(llt, A, route);
+    std::vector<char> removed(n, 0);
+    std::vector<int> removedList;
+    int restores = 0, folded = 0;
+    for (int step = 0; step < steps; ++step) {
+      CAPTURE(step);
+      std::vector<int> dofs;
+      if (step % 2 == 0 || removedList.empty()) {  // a short run of grid neighbours (a seam) or a few dofs anywhere
+        const int start = int(g() % n), count = 1 + int(g() % 6);
+        for (int k = 0; k < count; ++k) {
+          const int v = step % 4 == 0 ? (start + k) % int(n) : int(g() % n);
+          if (!removed[v] && std::find(dofs.begin(), dofs.end(), v) == dofs.end()) dofs.push_back(v);
+        }
+        llt.removeDofs(dofs);
+        REQUIRE(llt.info() == Eigen::Success);
+        for (int v : dofs) removed[v] = 1;
+        removedList.insert(removedList.end(), dofs.begin(), dofs.end());
+      } else {  // some of the removed dofs back (all of them every fourth step)
+        std::shuffle(removedList.begin(), removedList.end(), g);
+        const std::size_t count = step % 4 == 3 ? removedList.size() : 1 + g() % removedList.size();
+        for (std::size_t k = 0; k < count; ++k) dofs.push_back(removedList[k]);
+        removedList.erase(removedList.begin(), removedList.begin() + count);
+        llt.restoreDofs(dofs);
+        REQUIRE(llt.info() == Eigen::Success);
+        for (int v : dofs) removed[v] = 0;
+        ++restores;
+        const Eigen::UpdateStatistics& st = llt.lastUpdate();
+        folded += st.route == Eigen::UpdateRoute::Mixed;
+        CHECK(st.changedColumns == Index(dofs.size()));
+        if (route == Eigen::UpdateRoute::PartialRefactorization) CHECK(st.route == route);
+      }
+      CHECK(differenceFromFresh(llt, withIdentityRows<Cfg>(A, removed)) <= lowRankTolerance<Cfg>());
+      CHECK(removedAreIdentity<Cfg>(llt, removed));
+      std::mt19937 gb(step);
+      const typename Cfg::Dense b = randomDense<Cfg>(n, 2, gb), known = randomDense<Cfg>(n, 2, gb);
+      const typename Cfg::Dense x = llt.solveDirichlet(b, known);
+      typename Cfg::Dense r = A * x - b;
+      for (Index i = 0; i < n; ++i)
+        if (removed[std::size_t(i)]) {
+          CHECK(x.row(i) == known.row(i));
+          r.row(i).setZero();
+        }
+      CHECK(double(r.norm() / (b.norm() + (A * x).norm())) <= lowRankTolerance<Cfg>());
+    }
+    // forced folds fold every restore; the automatic route folds the restore of one dof (a
+    // rank-2 change of the separators above it, far less than refactoring them)
+    if (route == Eigen::UpdateRoute::Mixed || route == Eigen::UpdateRoute::LowRank) CHECK(folded == restores);
+    if (route == Eigen::UpdateRoute::Automatic && Cfg::fillReducing) {
+      int single = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int v = int(g() % n);
+        if (removed[v]) continue;
+        llt.removeDofs(std::vector<int>{v});
+        REQUIRE(llt.info() == Eigen::Success);
+        llt.restoreDofs(std::vector<int>{v});
+        REQUIRE(llt.info() == Eigen::Success);
+        single += llt.lastUpdate().route == Eigen::UpdateRoute::Mixed;
+      }
+      CHECK(single > 0);
+      CHECK(differenceFromFresh(llt, withIdentityRows<Cfg>(A, removed)) <= lowRankTolerance<Cfg>());
+    }
   }
 }
 
@@ -534,6 +631,38 @@ TEST_CASE_TEMPLATE("bad update input gives a clear error and a usable object", C
     // and the object goes on updating
     llt.removeDofs(std::vector<int>{1, 2});
     CHECK(llt.info() == Eigen::Success);
+  }
+  SUBCASE("restoring dofs whose values make the matrix indefinite leaves them removed, on every route") {
+    // a removed dof's values are not factored: an update may make it indefinite there, and
+    // restoring it must then fail without changing the factor
+    typename Cfg::FullMatrix indefinite = A;
+    indefinite.coeffRef(3, 3) = Scalar(-1);
+    llt.removeDofs(std::vector<int>{3, 40});
+    REQUIRE(llt.info() == Eigen::Success);
+    llt.updateColumns(toInput<Cfg>(indefinite), std::vector<int>{3});
+    REQUIRE(llt.info() == Eigen::Success);
+    std::vector<char> removed(n, 0);
+    removed[3] = removed[40] = 1;
+    const typename Cfg::FullMatrix factored = withIdentityRows<Cfg>(indefinite, removed);
+    for (const Eigen::UpdateRoute route : {Eigen::UpdateRoute::Automatic, Eigen::UpdateRoute::Mixed,
+                                           Eigen::UpdateRoute::LowRank, Eigen::UpdateRoute::PartialRefactorization,
+                                           Eigen::UpdateRoute::Refactorization}) {
+      CAPTURE(int(route));
+      llt.setUpdateRoute(route);
+      llt.restoreDofs(std::vector<int>{40, 3});
+      CHECK(llt.info() == Eigen::NumericalIssue);
+      CHECK(llt.failedColumn() >= 0);
+      CHECK(llt.removedDofs().size() == 2);
+      CHECK(removedAreIdentity<Cfg>(llt, removed));
+      const typename Cfg::Dense x = llt.solve(b);
+      CHECK(double((factored * x - b).norm() / b.norm()) <= lowRankTolerance<Cfg>());
+    }
+    llt.setUpdateRoute(Eigen::UpdateRoute::Automatic);
+    llt.updateColumns(toInput<Cfg>(A), std::vector<int>{3});  // the object goes on updating
+    REQUIRE(llt.info() == Eigen::Success);
+    llt.restoreDofs(std::vector<int>{3, 40});
+    CHECK(llt.info() == Eigen::Success);
+    stillSolvesA();
   }
   SUBCASE("NaN or infinity in an updated column, on every route, leaves the previous factor") {
     typedef typename Cfg::RealScalar Real;

@@ -25,11 +25,12 @@ enum class UpdateRoute {
   Automatic,               ///< the cheapest route by the cost model (default)
   PartialRefactorization,  ///< recompute the dirty supernodes only (Algorithm 3); exact
   LowRank,                 ///< removeDofs: fold L(I,B) into L(I,I) along the paths of B; updateColumns/insertDofs/
-                           ///< mergeDofs: as Mixed; restoreDofs: as Automatic
+                           ///< mergeDofs/restoreDofs: as Mixed
   Refactorization,         ///< recompute every supernode
   Mixed                    ///< removeDofs: low-rank below, partial refactorization of the top; updateColumns/
                            ///< insertDofs/mergeDofs: each dirty supernode refactored or updated by signed low-rank
-                           ///< folds (LowRankTopUpdate.h); restoreDofs: as Automatic
+                           ///< folds (LowRankTopUpdate.h); restoreDofs: likewise, each restored row and column going
+                           ///< from the identity's to the matrix's
 };
 
 /** \ingroup UpdatableCholesky_Module

@@ -1,7 +1,8 @@
-// LowRankTopUpdate.h — after a cut, a merge or a change of values, dirty supernodes are updated by
-// signed low-rank folds instead of being refactored where that is cheaper (insertDofs/mergeDofs,
-// paper §4.2 / Algorithm 4, and updateColumns, an insertion without copies; Davis & Hager's up-
-// and downdates on the supernodal factor, DESIGN §3).
+// LowRankTopUpdate.h — after a cut, a merge, a change of values or a restore, dirty supernodes are
+// updated by signed low-rank folds instead of being refactored where that is cheaper
+// (insertDofs/mergeDofs, paper §4.2 / Algorithm 4; updateColumns, an insertion without copies;
+// restoreDofs, whose restored rows and columns go from the identity's to the matrix's, with the
+// same structure; Davis & Hager's up- and downdates on the supernodal factor, DESIGN §3).
 //
 // A structural change makes the supernodes on the paths from the changed columns to the roots
 // dirty. Each is refactored (Algorithm 4) or folded. A folded one starts from its previous block,
@@ -67,6 +68,11 @@ constexpr double SplitFlopWeight = 1.5;
   * uncut one and the bookkeeping of the folded supernodes, which the flop model leaves out (on
   * bunny and igea cuts a plan saving under ~5% was slower than the partial refactorization). */
 constexpr double MixedRouteShare = 0.95;
+
+/** \internal The fixed cost of folding into one supernode in a restore (restoreDofs), in flops of
+  * a refactorization, charged by its plan (foldPlan()): a restore of a region folds many small
+  * supernodes, each costing more than its flops show (as LowRankRemoval.h's removals do). */
+constexpr double RestoreFoldOverheadFlops = 16000.0;
 
 /** \internal A refactored supernode whose parent is folded: the change of its update matrix is
   * split with at most \a bound columns, \a likely expected (updateMatrixChange()). */
@@ -194,14 +200,15 @@ bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index l
   * On return \a folded (by supernode, all zero on entry) flags the folded supernodes, \a top
   * lists them and \a bottom the refactored ones (both increasing), and \a boundary each
   * refactored supernode whose parent is folded, with the rank bound of its update matrix's
-  * change. \returns the estimated cost of the plan in refactorization flops (fold flops weighted
-  * by FoldFlopWeight). */
+  * change. \a foldOverhead: flops charged per folded supernode besides its fold (the work a fold
+  * does that its flops do not show). \returns the estimated cost of the plan in refactorization
+  * flops (fold flops weighted by FoldFlopWeight). */
 template <typename Scalar, typename StorageIndex>
 double foldPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vector<Index>& dirty,
                 const std::vector<char>& eligible, const std::vector<Index>& rankColumns,
                 const std::vector<Index>& likelyRankColumns, const std::vector<Index>& rowRank, const char* removed,
                 bool force, std::vector<char>& folded, std::vector<Index>& bottom, std::vector<Index>& top,
-                std::vector<FoldBoundary>& boundary, UpdateWorkspace<Scalar>& ws) {
+                std::vector<FoldBoundary>& boundary, UpdateWorkspace<Scalar>& ws, double foldOverhead = 0) {
   const Index count = Index(dirty.size());
   const double never = std::numeric_limits<double>::infinity();
   // per position in dirty: the subtree's cost when this supernode is refactored / folded
@@ -229,7 +236,7 @@ double foldPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vect
       const double own = double(ws.ownRank[s]);
       fold[k] = FoldFlopWeight * (foldFlops(rankIn[k], nr, nc, double(start[k])) +
                                   foldFlops(own, nr, nc, double(ws.ownStart[s]))) +
-                signedCompressionFlops(m, rankIn[k] + own) + underFold[k];
+                signedCompressionFlops(m, rankIn[k] + own) + foldOverhead + underFold[k];
       rankOut[k] = (std::min)(m, rankIn[k] + own);
     }
     apply[k] = m * m * rankOut[k];  // the deferred correction, applied by a refactored parent
@@ -270,7 +277,7 @@ double foldPlan(const SupernodalFactor<Scalar, StorageIndex>& f, const std::vect
       total += FoldFlopWeight * (foldFlops(rankIn[k], double(node.nrows()), double(node.ncols), double(start[k])) +
                                  foldFlops(double(ws.ownRank[s]), double(node.nrows()), double(node.ncols),
                                            double(ws.ownStart[s]))) +
-               signedCompressionFlops(double(node.below()), rankIn[k] + double(ws.ownRank[s]));
+               signedCompressionFlops(double(node.below()), rankIn[k] + double(ws.ownRank[s])) + foldOverhead;
       if (p != -1 && !parentFolded) total += apply[k];
     } else {
       bottom.push_back(s);
@@ -410,6 +417,73 @@ bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<
   at.resize(oldNr - oldNc);
   extendUpdateMatrix(oldU.data(), at, m, U, runs);
   return false;
+}
+
+/** \internal An entry of an input change (the new matrix minus the previous one, as factored) in
+  * the lower triangle of the permuted matrix (row >= col), with the supernode of its column. */
+template <typename Scalar, typename StorageIndex>
+struct InputChangeEntry {
+  Index supernode;
+  StorageIndex row, col;
+  Scalar value;
+};
+
+/** \internal Splits the input change of the supernodes named in \a entries (summed where an
+  * entry repeats; sorted here) into ws.ownPositive and ws.ownNegative, P P^H − N N^H on the
+  * supernode's rows \a rowsOf(t), two columns per changed column: column j's change d (its
+  * diagonal halved) gives e_j d^H + d e_j^H = u u^H − v v^H with u, v = (a e_j ± d / a) / sqrt(2),
+  * a² = |d| (balanced), both zero above row j (ws.ownPositiveStart/ownNegativeStart).
+  * \a position: scratch by permuted row, covering every row, all -1 between uses. */
+template <typename Scalar, typename StorageIndex, typename RowsOf>
+void splitInputChanges(std::vector<InputChangeEntry<Scalar, StorageIndex> >& entries, RowsOf&& rowsOf,
+                       std::vector<StorageIndex>& position, UpdateWorkspace<Scalar>& ws) {
+  typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
+  typedef typename NumTraits<Scalar>::Real RealScalar;
+  typedef InputChangeEntry<Scalar, StorageIndex> Entry;
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.supernode != b.supernode ? a.supernode < b.supernode : a.col != b.col ? a.col < b.col : a.row < b.row;
+  });
+  const RealScalar half = RealScalar(0.5), rootHalf = numext::sqrt(half);
+  for (std::size_t g = 0; g < entries.size();) {
+    const Index t = entries[g].supernode;
+    std::size_t h = g;
+    Index columns = 0;
+    for (; h < entries.size() && entries[h].supernode == t; ++h) columns += h == g || entries[h].col != entries[h - 1].col;
+    const std::vector<StorageIndex>& rows = rowsOf(t);
+    const Index nr = Index(rows.size()), firstCol = Index(rows[0]);
+    for (Index k = 0; k < nr; ++k) position[rows[k]] = StorageIndex(k);
+    Dense D = Dense::Zero(nr, columns);
+    std::vector<Index> local(columns);
+    for (Index q = -1; g < h; ++g) {
+      if (q < 0 || Index(entries[g].col) != firstCol + local[q]) local[++q] = Index(entries[g].col) - firstCol;
+      D(position[entries[g].row], q) += entries[g].value;
+    }
+    for (Index k = 0; k < nr; ++k) position[rows[k]] = StorageIndex(-1);
+    Dense& P = ws.ownPositive[t];
+    Dense& N = ws.ownNegative[t];
+    std::vector<Index>&startP = ws.ownPositiveStart[t], &startN = ws.ownNegativeStart[t];
+    P.resize(nr, columns);
+    N.resize(nr, columns);
+    startP.clear();
+    startN.clear();
+    for (Index q = 0; q < columns; ++q) {
+      const Index j = local[q];
+      auto d = D.col(q);
+      d[j] = Scalar(half * numext::real(d[j]));
+      const RealScalar norm = d.norm();
+      if (!(norm > RealScalar(0))) continue;
+      const RealScalar a = numext::sqrt(norm);
+      const Index k = Index(startP.size());
+      P.col(k) = d * (rootHalf / a);
+      N.col(k) = -P.col(k);
+      P(j, k) += Scalar(rootHalf * a);
+      N(j, k) += Scalar(rootHalf * a);
+      startP.push_back(j);
+      startN.push_back(j);
+    }
+    P.conservativeResize(nr, Index(startP.size()));
+    N.conservativeResize(nr, Index(startN.size()));
+  }
 }
 
 /** \internal Rewrites a signed change P P^H − N N^H (both m rows) with as few columns as its

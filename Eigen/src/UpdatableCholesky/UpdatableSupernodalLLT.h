@@ -5,7 +5,7 @@
 // factorization (SupernodalNumeric.h) and the solve (SupernodalSolve.h). Paper §3.
 // It also drives the in-place updates: updateColumns/removeDofs/restoreDofs (paper §3.3 and §4.1,
 // Algorithm 3) and insertDofs/mergeDofs (§4.2, Algorithm 4; updateColumns is carried out as an
-// insertion without copies) check their input here, pick the
+// insertion without copies, restoreDofs folds like one where that is cheaper) check their input here, pick the
 // update route and call DofUpdates.h, LowRankRemoval.h, DofInsertion.h, DofInsertionInput.h and
 // LowRankTopUpdate.h. solveDirichlet (§4.1) is here too, and solves use the forward
 // substitution kept between them (IncrementalForwardSolve.h).
@@ -226,7 +226,11 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   template <typename Indices>
   UpdatableSupernodalLLT& removeDofs(const Indices& dofs);
 
-  /** Gives the removed dofs \a dofs their original rows and columns back. */
+  /** Gives the removed dofs \a dofs their original rows and columns back (those of the matrix
+    * last given; a row's entries at dofs still removed stay out). The dirty supernodes are
+    * refactored or, where the cost model finds it cheaper, updated by signed low-rank folds of
+    * the change (route Mixed: each restored column and row goes from the identity's to the
+    * matrix's, two columns of P P^H − N N^H per changed column, LowRankTopUpdate.h). */
   template <typename Indices>
   UpdatableSupernodalLLT& restoreDofs(const Indices& dofs);
 
@@ -515,6 +519,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   /** Scratch of insertDofs() and of mergeDofs(), kept so that their arrays are reused: an
     * insertion's renumbering is the identity on the old dofs, which its arrays keep between calls. */
   DofChange m_insertChange, m_mergeChange;
+  std::vector<char> m_restoredScratch;  ///< restoreByFolds(): flags by permuted column, zero between calls
   std::vector<std::pair<StorageIndex, StorageIndex> > m_mergeInto;  ///< mergeDofs() scratch
   internal::updatable_cholesky::FactorStructureBackup<Scalar, StorageIndex> m_structureBackup;  ///< their revert
   void replaceDofs(const MatrixType& matrix, DofChange& change);
@@ -546,6 +551,15 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     * (permuted column, value; sorted; insertion only). */
   void splitOwnInputChanges(const DofChange& change, const std::vector<char>& folded,
                             std::vector<std::pair<StorageIndex, RealScalar> >& copyPivots);
+  /** restoreDofs() by signed low-rank folds (route Mixed, LowRankTopUpdate.h): each restored
+    * column and row goes from the identity's to the matrix's; each dirty supernode (\a dirty,
+    * increasing) is refactored or folded, by the plan of foldPlan(). \returns false, having
+    * changed nothing, when the plan saves too little against refactoring \a dirtyFlops (or a
+    * refactorization's \a totalFlops); else the update is done, or failed and undone with
+    * \a revert (info() says which). */
+  template <typename Revert>
+  bool restoreByFolds(const std::vector<StorageIndex>& permutedColumns, const std::vector<Index>& dirty,
+                      double dirtyFlops, double totalFlops, Revert&& revert, std::chrono::steady_clock::time_point start);
   /** Fills lastUpdate() for an update that took \a route over the supernodes \a dirty and spent
     * \a flops (all of a refactorization's, reduced fronts counted on their kept rows), and tells
     * the kept forward substitution which blocks were rewritten: every update ends here. */
@@ -782,6 +796,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
   const double dirtyFlops = supernodeFlops(m_factor, dirty, removedFlags);
   UpdateRoute route = m_route;
+  if (!isRemoval && route != UpdateRoute::PartialRefactorization && route != UpdateRoute::Refactorization &&
+      m_numeric.hasCachedUpdates() && !dirty.empty() &&
+      restoreByFolds(permutedColumns, dirty, dirtyFlops, totalFlops, revert, start))
+    return;
   if ((route == UpdateRoute::LowRank || route == UpdateRoute::Mixed) && !isRemoval) route = UpdateRoute::Automatic;
   if (!m_numeric.hasCachedUpdates()) route = UpdateRoute::Refactorization;
   double mixedFlops = 0;  // the best plan of low-rank folds below and refactorization on top
@@ -845,6 +863,208 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   }
   recordUpdate(route, Index(permutedColumns.size()), changed,
                route == UpdateRoute::Refactorization ? totalFlops : dirtyFlops, start);
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+template <typename Revert>
+bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreByFolds(
+    const std::vector<StorageIndex>& permutedColumns, const std::vector<Index>& dirty, double dirtyFlops,
+    double totalFlops, Revert&& revert, std::chrono::steady_clock::time_point start) {
+  using namespace internal::updatable_cholesky;
+  typedef InputChangeEntry<Scalar, StorageIndex> Entry;
+  UpdateWorkspace<Scalar>& ws = m_workspace;
+  const Index ns = m_factor.count();
+  const StorageIndex* perm = m_P.indices().data();
+  const StorageIndex* pinv = m_Pinv.indices().data();
+  const char* removed = m_removedList.empty() ? nullptr : m_removedPermuted.data();  // (without the restored dofs)
+  const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
+  constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
+  std::vector<char>& restoredFlag = m_restoredScratch;  // by permuted column (zero between calls)
+  restoredFlag.resize(m_n, 0);
+  for (StorageIndex b : permutedColumns) restoredFlag[b] = 1;
+  auto isRestored = [&restoredFlag](Index column) { return (restoredFlag[column] & 1) != 0; };
+  struct ClearFlags {  // (on every way out)
+    std::vector<char>& flag;
+    const std::vector<StorageIndex>& columns;
+    ~ClearFlags() {
+      for (StorageIndex b : columns) flag[b] = 0;
+    }
+  } clearFlags{restoredFlag, permutedColumns};
+  // 1. The plan (foldPlan()), made before the change is read: when it saves too little, the
+  //    caller refactors (partly or fully). Every dirty supernode keeps its structure and may be
+  //    folded. Rank bounds of the change of an update matrix U' − U above a subtree: restoring
+  //    the set R, U' = U + S_XR S_RR^-1 S_RX with S_XR = A_XR − A_XK K^-1 A_KR (K the kept dofs
+  //    of the subtree), whose column r vanishes on the kept rows X unless r has a kept neighbour
+  //    (one neither removed nor restored): one per such restored column below, and two per
+  //    restored row among its rows below (that row and column of U appear). Each changed column
+  //    (a restored one, or a kept one before a restored row) brings two of its own: counted once
+  //    each, flagged by bit 2 meanwhile.
+  std::vector<Index>&rankColumns = ws.rankColumns, &likelyRankColumns = ws.likelyRankColumns, &rowRank = ws.rowRank;
+  std::vector<Index>&ownRank = ws.ownRank, &ownStart = ws.ownStart;
+  std::vector<char>& eligible = ws.eligible;
+  auto own = [&](Index column) {
+    if (restoredFlag[column] & 2) return;
+    restoredFlag[column] |= 2;
+    const Index t = m_factor.colToSuper[column], local = column - m_factor.nodes[t].firstCol;
+    ownStart[t] = ownRank[t] == 0 ? local : (std::min)(ownStart[t], local);
+    ownRank[t] += 2;
+  };
+  std::vector<Index> bottom, top;
+  std::vector<FoldBoundary> boundary;
+  std::vector<char> folded(ns, 0);
+  const double limit = MixedRouteShare * (std::min)(dirtyFlops, totalFlops);
+  auto reset = [&]() {
+    for (Index s : dirty) eligible[s] = rankColumns[s] = likelyRankColumns[s] = rowRank[s] = ownRank[s] = ownStart[s] = 0;
+  };
+  // first on lower bounds read off the restored columns alone (their own changes): every cost of
+  // a plan grows with the ranks, so when this one saves too little, so does the whole one (a
+  // restore of regions, whose own changes cover whole supernodes, ends here at O(restored) cost)
+  for (Index s : dirty) eligible[s] = 1;
+  for (StorageIndex b : permutedColumns) {
+    const Index t = m_factor.colToSuper[b], local = Index(b) - m_factor.nodes[t].firstCol;
+    ownStart[t] = ownRank[t] == 0 ? local : (std::min)(ownStart[t], local);
+    ownRank[t] += 2;
+  }
+  double planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank, removed, force, folded,
+                            bottom, top, boundary, ws, RestoreFoldOverheadFlops);
+  if (top.empty() || (!force && planned >= limit)) {
+    reset();
+    return false;
+  }
+  for (Index s : dirty) folded[s] = ownRank[s] = ownStart[s] = 0;
+  std::vector<StorageIndex> ownColumns;  // (to clear their bit 2)
+  for (StorageIndex b : permutedColumns) {
+    const Index d = pinv[b];
+    bool coupled = false;  // (to a kept dof)
+    auto neighbour = [&](Index y) {  // (user numbering)
+      const Index py = perm[y];
+      if (isRestored(py) || (removed && removed[py])) return;
+      coupled = true;
+      if (py < b && !(restoredFlag[py] & 2)) {
+        own(py);
+        ownColumns.push_back(StorageIndex(py));
+      }
+    };
+    for (Index p = m_store.begin[d]; p < m_store.end[d]; ++p)
+      if (Index(m_store.inner[p]) != d) neighbour(m_store.inner[p]);
+    for (Index q = m_transposed.begin[d]; q < m_transposed.end[d]; ++q) neighbour(m_transposed.pool[q]);
+    rankColumns[m_factor.colToSuper[b]] += coupled;
+    own(b);
+  }
+  for (StorageIndex c : ownColumns) restoredFlag[c] &= 1;
+  for (StorageIndex b : permutedColumns) restoredFlag[b] &= 1;
+  for (Index s : dirty) {
+    const auto& node = m_factor.nodes[s];
+    likelyRankColumns[s] = rankColumns[s];
+    for (Index k = node.ncols; k < node.nrows(); ++k) rowRank[s] += 2 * isRestored(node.rows[k]);
+  }
+  planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank, removed, force, folded, bottom,
+                     top, boundary, ws, RestoreFoldOverheadFlops);
+  reset();
+  if (top.empty() || (!force && planned >= limit)) return false;
+
+  // 2. The change in the folded supernodes, as factored: each restored column and row goes from
+  //    the identity's to the matrix's (the still removed dofs' entries left out), in the lower
+  //    triangle of the permuted matrix. Each entry is read once: a restored dof's outer vector,
+  //    and the entries at it in the outer vectors of its neighbours that are not restored.
+  std::vector<Entry> entries;
+  auto add = [&](Index row, Index col, Scalar value) {  // (user numbering)
+    Index pi = perm[row], pj = perm[col];
+    if (pi < pj) {
+      std::swap(pi, pj);
+      value = numext::conj(value);
+    }
+    const Index t = m_factor.colToSuper[pj];
+    if (!folded[t] || (removed && (removed[pi] || removed[pj]))) return;
+    entries.push_back(Entry{t, StorageIndex(pi), StorageIndex(pj), value});
+  };
+  auto addEntry = [&](Index outer, Index p) {
+    const Index inner = m_store.inner[p];
+    if (rowMajor)
+      add(outer, inner, m_store.values[p]);
+    else
+      add(inner, outer, m_store.values[p]);
+  };
+  for (StorageIndex b : permutedColumns) {
+    const Index d = pinv[b];
+    Scalar diagonal(m_factoredOffset);  // (offset + scale a_dd, the offset alone when A lacks it)
+    for (Index p = m_store.begin[d]; p < m_store.end[d]; ++p) {
+      if (Index(m_store.inner[p]) == d)
+        diagonal += m_factoredScale * m_store.values[p];
+      else
+        addEntry(d, p);
+    }
+    add(d, d, diagonal - Scalar(1));  // (the identity's diagonal)
+    for (Index q = m_transposed.begin[d]; q < m_transposed.end[d]; ++q) {
+      const Index x = m_transposed.pool[q];
+      if (isRestored(perm[x])) continue;  // (read with x's own outer vector)
+      for (Index p = m_store.begin[x]; p < m_store.end[x]; ++p)
+        if (Index(m_store.inner[p]) == d) addEntry(x, p);
+    }
+  }
+
+  // 3. The dirty supernodes' blocks and update matrices set aside (the folded ones take theirs
+  //    back; the refactored children of folded ones are compared with theirs), the own changes
+  //    split, then the refactorizations and folds children first (refactorAndFold()).
+  FactorStructureBackup<Scalar, StorageIndex>& backup = m_structureBackup;
+  backup.rows.resize(ns);
+  backup.values.resize(ns);
+  backup.cache.resize(ns);
+  backup.parentPosition.resize(ns);
+  backup.firstCol.resize(ns);
+  backup.ncols.resize(ns);
+  for (Index s : dirty) {
+    auto& node = m_factor.nodes[s];
+    m_numeric.applyCorrections(m_factor, s);  // (set aside as they are: no deferred parts)
+    backup.firstCol[s] = node.firstCol;
+    backup.ncols[s] = node.ncols;
+    backup.rows[s].assign(node.rows.begin(), node.rows.end());
+    backup.values[s].swap(node.values);
+    backup.cache[s].swap(m_numeric.cache()[s]);
+    backup.takeSpare(node.nrows(), node.ncols, node.values);
+    backup.takeSpare(node.below() * node.below(), m_numeric.cache()[s]);
+  }
+  {
+    std::vector<StorageIndex>& position = m_inputDiff.position;  // (by permuted row, all -1 between uses)
+    if (Index(position.size()) < m_n) position.resize(m_n, StorageIndex(-1));
+    splitInputChanges(entries, [&](Index t) -> const std::vector<StorageIndex>& { return m_factor.nodes[t].rows; },
+                      position, ws);
+  }
+  std::vector<Index> taken;
+  double flops = 0;
+  UpdateRoute route = UpdateRoute::Mixed;
+  m_numeric.setCacheUpdates(true);
+  const std::vector<StorageIndex> unmoved;  // (no row moves: every block is taken back as it is)
+  Index bad = refactorAndFold(
+      m_factor, m_numeric, dirty, folded, boundary, backup, taken, unmoved, removed, ws,
+      [&](const std::vector<Index>& list) { return m_numeric.refactorize(m_factor, numericInput(), list, threadCount()); },
+      [](Index) -> RealScalar {
+        eigen_assert(false && "a restore has no placeholder columns");
+        return RealScalar(1);
+      },
+      flops);
+  if (bad == -2) {  // a change not captured by its bound, or a downdate lost a pivot: refactor instead
+    for (Index s : dirty) m_numeric.discardCorrections(s);
+    route = UpdateRoute::PartialRefactorization;
+    flops = dirtyFlops;
+    bad = m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
+  }
+  if (bad >= 0) {  // not positive definite: the dofs removed again and their supernodes recomputed
+    m_failedColumn = m_Pinv.indices()[bad];
+    revert();
+    for (Index s : dirty) m_numeric.discardCorrections(s);
+    const Index again = m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
+    eigen_assert(again < 0 && "UpdatableSupernodalLLT: the previous factor could not be restored");
+    m_factorizationIsOk = again < 0;
+    m_info = NumericalIssue;
+  } else {
+    m_info = Success;
+    if (route == UpdateRoute::Mixed && removed)  // (rounding the folds leave in removed rows)
+      for (Index s : dirty) m_numeric.clearRemoved(m_factor, s, removed);
+  }
+  backup.release(m_factor, dirty);
+  recordUpdate(route, Index(permutedColumns.size()), dirty, flops, start);
+  return true;
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
@@ -1232,7 +1452,6 @@ template <typename MatrixType_, int UpLo_, typename Ordering_>
 void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges(
     const DofChange& change, const std::vector<char>& folded, std::vector<std::pair<StorageIndex, RealScalar> >& copyPivots) {
   using namespace internal::updatable_cholesky;
-  typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
   InputDiff<Scalar, StorageIndex>& diff = m_inputDiff;
   const Index total = m_store.outerSize(), n = Index(change.newOfOld.size());
   constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
@@ -1242,11 +1461,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges
   const StorageIndex* perm = previousStructure ? change.newPerm.data() : m_P.indices().data();
   const std::vector<StorageIndex>& colToSuper = previousStructure ? m_structureBackup.colToSuper : m_factor.colToSuper;
   const char* removed = previousStructure ? nullptr : m_removedPermuted.data();  // (a merge folds only without removed dofs)
-  struct Entry {
-    Index supernode;
-    StorageIndex row, col;  // permuted, row >= col
-    Scalar value;
-  };
+  typedef InputChangeEntry<Scalar, StorageIndex> Entry;
   std::vector<Entry> entries;
   // entry (row, col) of the new matrix minus the previous one (dofs in the folding numbering),
   // in the lower triangle of the permuted matrix, when its column belongs to a folded supernode
@@ -1322,54 +1537,11 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges
       if (x >= 0) addRange(m_store, x, m_store.begin[x], m_store.end[x], false);
     }
   }
-  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-    return a.supernode != b.supernode ? a.supernode < b.supernode : a.col != b.col ? a.col < b.col : a.row < b.row;
-  });
   std::vector<StorageIndex>& position = diff.position;  // (by permuted row, all -1 between uses)
   if (Index(position.size()) < n) position.resize(n, StorageIndex(-1));  // (a merge's previous numbering)
-  const RealScalar half = RealScalar(0.5), rootHalf = numext::sqrt(half);
-  for (std::size_t g = 0; g < entries.size();) {
-    const Index t = entries[g].supernode;
-    std::size_t h = g;
-    Index columns = 0;
-    for (; h < entries.size() && entries[h].supernode == t; ++h) columns += h == g || entries[h].col != entries[h - 1].col;
-    const std::vector<StorageIndex>& rows = previousStructure ? m_structureBackup.rows[t] : m_factor.nodes[t].rows;
-    const Index nr = Index(rows.size()), firstCol = Index(rows[0]);
-    for (Index k = 0; k < nr; ++k) position[rows[k]] = StorageIndex(k);
-    Dense D = Dense::Zero(nr, columns);
-    std::vector<Index> local(columns);
-    for (Index q = -1; g < h; ++g) {
-      if (q < 0 || Index(entries[g].col) != firstCol + local[q]) local[++q] = Index(entries[g].col) - firstCol;
-      D(position[entries[g].row], q) += entries[g].value;
-    }
-    for (Index k = 0; k < nr; ++k) position[rows[k]] = StorageIndex(-1);
-    // column j's change d (diagonal halved): e_j d^H + d e_j^H = u u^H - v v^H with
-    // u, v = (a e_j +- d / a) / sqrt(2), a^2 = |d| (balanced)
-    Dense& P = m_workspace.ownPositive[t];
-    Dense& N = m_workspace.ownNegative[t];
-    std::vector<Index>&startP = m_workspace.ownPositiveStart[t], &startN = m_workspace.ownNegativeStart[t];
-    P.resize(nr, columns);
-    N.resize(nr, columns);
-    startP.clear();
-    startN.clear();
-    for (Index q = 0; q < columns; ++q) {
-      const Index j = local[q];
-      auto d = D.col(q);
-      d[j] = Scalar(half * numext::real(d[j]));
-      const RealScalar norm = d.norm();
-      if (!(norm > RealScalar(0))) continue;
-      const RealScalar a = numext::sqrt(norm);
-      const Index k = Index(startP.size());
-      P.col(k) = d * (rootHalf / a);
-      N.col(k) = -P.col(k);
-      P(j, k) += Scalar(rootHalf * a);
-      N(j, k) += Scalar(rootHalf * a);
-      startP.push_back(j);
-      startN.push_back(j);
-    }
-    P.conservativeResize(nr, Index(startP.size()));
-    N.conservativeResize(nr, Index(startN.size()));
-  }
+  splitInputChanges(entries, [&](Index t) -> const std::vector<StorageIndex>& {
+    return previousStructure ? m_structureBackup.rows[t] : m_factor.nodes[t].rows;
+  }, position, m_workspace);
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
