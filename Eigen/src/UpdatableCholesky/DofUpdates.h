@@ -57,15 +57,15 @@ struct UpdateWorkspace {
   std::vector<char> mark;                                   ///< dirty marks
   std::vector<Index> rank, local, first;                    ///< per-supernode ranks, first columns (cost model)
   std::vector<double> cost;                                 ///< per-supernode low-rank flops (cost model)
-  std::vector<Index> foldBound;  ///< 1 + position of a refactored child of a folded supernode in the plan's boundary list (insertions), else 0
-  std::vector<char> eligible;    ///< insertions' plan: a dirty supernode may be folded (zero for the others between calls)
-  std::vector<Index> rankColumns, likelyRankColumns, rowRank;  ///< insertions' plan: per dirty supernode (zero between calls)
+  std::vector<Index> foldBound;  ///< 1 + position of a refactored child of a folded supernode in the plan's boundary list (folding plans), else 0
+  std::vector<char> eligible;    ///< folding plans (insertions, restores): a dirty supernode may be folded (zero for the others between calls)
+  std::vector<Index> rankColumns, likelyRankColumns, rowRank;  ///< folding plans: per dirty supernode (zero between calls)
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > carried;   ///< W passed to the parent
-  std::vector<Matrix<Scalar, Dynamic, Dynamic> > carriedNegative;  ///< downdate part passed up (insertions)
-  /** insertions' plan: per dirty supernode, the rank its own input change adds (two per changed
+  std::vector<Matrix<Scalar, Dynamic, Dynamic> > carriedNegative;  ///< downdate part passed up (folding routes)
+  /** folding plans: per dirty supernode, the rank its own input change adds (two per changed
     * or new column) and the first of those columns (its position in the supernode); zero between calls */
   std::vector<Index> ownRank, ownStart;
-  /** insertions: per folded supernode, its own input change split as P P^H − N N^H (rows: the
+  /** folding routes: per folded supernode, its own input change split as P P^H − N N^H (rows: the
     * supernode's rows), and where each column of P (and of N) starts to be non-zero */
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > ownPositive, ownNegative;
   std::vector<std::vector<Index> > ownPositiveStart, ownNegativeStart;

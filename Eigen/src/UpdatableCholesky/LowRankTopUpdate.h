@@ -183,9 +183,9 @@ bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index l
   return true;
 }
 
-/** \internal Chooses, per dirty supernode of a structural change (\a dirty, increasing), whether
-  * it is refactored or folded, by a dynamic program over the dirty tree on flop estimates. A
-  * supernode may be folded when flagged in \a eligible (same columns and input as before; its
+/** \internal Chooses, per dirty supernode of a structural change or a restore (\a dirty,
+  * increasing), whether it is refactored or folded, by a dynamic program over the dirty tree on
+  * flop estimates. A supernode may be folded when flagged in \a eligible (same columns; its
   * rows may have gained copies, which enter its block and update matrix as zero rows: the old
   * factor extended with identity for the copies). The folded ones need not be closed under
   * parents: a folded supernode under a refactored one leaves its update-matrix change as a
@@ -193,7 +193,8 @@ bool updateMatrixChange(const Scalar* newU, const Scalar* oldU, Index m, Index l
   * \a rankColumns: per supernode, how much its columns add to the rank of the change of an
   * update matrix above them: one per copy or merged dof and per dof where the cut does not glue
   * back (gluingMismatches()). \a rowRank: what a supernode's copy rows add to the rank of its
-  * own update matrix's change (two per copy row). Both give the bound the split samples with.
+  * own update matrix's change (two per copy row). Both give the bound the split samples with (a
+  * restore: one per restored column with a kept neighbour, two per restored row).
   * \a likelyRankColumns: \a rankColumns without the dofs whose mismatch is small (at most
   * sqrt(eps) of its entries), which a change far above mostly drops (below rounding): the rank
   * the costs are estimated with. With \a force, every eligible supernode is folded.
