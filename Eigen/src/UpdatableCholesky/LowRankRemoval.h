@@ -72,7 +72,8 @@ double lowRankRemovalFlops(const SupernodalFactor<Scalar, StorageIndex>& f, cons
 /** \internal The fixed cost of folding into one supernode (gathering the columns passed up and
   * ordering them, the small dense objects of the fold, clearing its removed rows), in flops of a
   * refactorization: regions of thousands of small supernodes (an ARAP region of interest) are
-  * folded at a cost that their flops do not show. */
+  * folded at a cost that their flops do not show. restoreDofs' fold plan charges it too (foldPlan()
+  * in LowRankTopUpdate.h): a restored region folds as many small supernodes. */
 constexpr double RemovalFoldOverheadFlops = 16000.0;
 
 /** \internal The cheapest mix of the two exact-enough routes for a removal: the dirty supernodes

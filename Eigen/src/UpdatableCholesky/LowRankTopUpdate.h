@@ -69,11 +69,6 @@ constexpr double SplitFlopWeight = 1.5;
   * bunny and igea cuts a plan saving under ~5% was slower than the partial refactorization). */
 constexpr double MixedRouteShare = 0.95;
 
-/** \internal The fixed cost of folding into one supernode in a restore (restoreDofs), in flops of
-  * a refactorization, charged by its plan (foldPlan()): a restore of a region folds many small
-  * supernodes, each costing more than its flops show (as LowRankRemoval.h's removals do). */
-constexpr double RestoreFoldOverheadFlops = 16000.0;
-
 /** \internal A refactored supernode whose parent is folded: the change of its update matrix is
   * split with at most \a bound columns, \a likely expected (updateMatrixChange()). */
 struct FoldBoundary {
@@ -428,6 +423,23 @@ struct InputChangeEntry {
   StorageIndex row, col;
   Scalar value;
 };
+
+/** \internal Appends entry (\a row, \a col) of an input change, \a value (dofs numbered by \a perm
+  * into permuted columns), to \a entries in the lower triangle (conjugated when it crosses the
+  * diagonal), when its column's supernode is \a folded and neither dof is \a removed (or null). */
+template <typename Scalar, typename StorageIndex>
+void appendInputChange(std::vector<InputChangeEntry<Scalar, StorageIndex> >& entries, const StorageIndex* perm,
+                       const std::vector<StorageIndex>& colToSuper, const std::vector<char>& folded, const char* removed,
+                       Index row, Index col, Scalar value) {
+  Index pi = perm[row], pj = perm[col];
+  if (pi < pj) {
+    std::swap(pi, pj);
+    value = numext::conj(value);
+  }
+  const Index t = colToSuper[pj];
+  if (!folded[t] || (removed && (removed[pi] || removed[pj]))) return;
+  entries.push_back(InputChangeEntry<Scalar, StorageIndex>{t, StorageIndex(pi), StorageIndex(pj), value});
+}
 
 /** \internal Splits the input change of the supernodes named in \a entries (summed where an
   * entry repeats; sorted here) into ws.ownPositive and ws.ownNegative, P P^H − N N^H on the

@@ -902,12 +902,15 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreByFolds(
   std::vector<Index>&rankColumns = ws.rankColumns, &likelyRankColumns = ws.likelyRankColumns, &rowRank = ws.rowRank;
   std::vector<Index>&ownRank = ws.ownRank, &ownStart = ws.ownStart;
   std::vector<char>& eligible = ws.eligible;
-  auto own = [&](Index column) {
-    if (restoredFlag[column] & 2) return;
-    restoredFlag[column] |= 2;
+  auto countOwn = [&](Index column) {  // (two per changed column)
     const Index t = m_factor.colToSuper[column], local = column - m_factor.nodes[t].firstCol;
     ownStart[t] = ownRank[t] == 0 ? local : (std::min)(ownStart[t], local);
     ownRank[t] += 2;
+  };
+  auto own = [&](Index column) {  // (once each)
+    if (restoredFlag[column] & 2) return;
+    restoredFlag[column] |= 2;
+    countOwn(column);
   };
   std::vector<Index> bottom, top;
   std::vector<FoldBoundary> boundary;
@@ -920,13 +923,9 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreByFolds(
   // a plan grows with the ranks, so when this one saves too little, so does the whole one (a
   // restore of regions, whose own changes cover whole supernodes, ends here at O(restored) cost)
   for (Index s : dirty) eligible[s] = 1;
-  for (StorageIndex b : permutedColumns) {
-    const Index t = m_factor.colToSuper[b], local = Index(b) - m_factor.nodes[t].firstCol;
-    ownStart[t] = ownRank[t] == 0 ? local : (std::min)(ownStart[t], local);
-    ownRank[t] += 2;
-  }
+  for (StorageIndex b : permutedColumns) countOwn(b);
   double planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank, removed, force, folded,
-                            bottom, top, boundary, ws, RestoreFoldOverheadFlops);
+                            bottom, top, boundary, ws, RemovalFoldOverheadFlops);
   if (top.empty() || (!force && planned >= limit)) {
     reset();
     return false;
@@ -959,7 +958,7 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreByFolds(
     for (Index k = node.ncols; k < node.nrows(); ++k) rowRank[s] += 2 * isRestored(node.rows[k]);
   }
   planned = foldPlan(m_factor, dirty, eligible, rankColumns, likelyRankColumns, rowRank, removed, force, folded, bottom,
-                     top, boundary, ws, RestoreFoldOverheadFlops);
+                     top, boundary, ws, RemovalFoldOverheadFlops);
   reset();
   if (top.empty() || (!force && planned >= limit)) return false;
 
@@ -969,14 +968,7 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreByFolds(
   //    and the entries at it in the outer vectors of its neighbours that are not restored.
   std::vector<Entry> entries;
   auto add = [&](Index row, Index col, Scalar value) {  // (user numbering)
-    Index pi = perm[row], pj = perm[col];
-    if (pi < pj) {
-      std::swap(pi, pj);
-      value = numext::conj(value);
-    }
-    const Index t = m_factor.colToSuper[pj];
-    if (!folded[t] || (removed && (removed[pi] || removed[pj]))) return;
-    entries.push_back(Entry{t, StorageIndex(pi), StorageIndex(pj), value});
+    appendInputChange(entries, perm, m_factor.colToSuper, folded, removed, row, col, value);
   };
   auto addEntry = [&](Index outer, Index p) {
     const Index inner = m_store.inner[p];
@@ -1466,14 +1458,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges
   // entry (row, col) of the new matrix minus the previous one (dofs in the folding numbering),
   // in the lower triangle of the permuted matrix, when its column belongs to a folded supernode
   auto add = [&](Index row, Index col, Scalar value) {
-    Index pi = perm[row], pj = perm[col];
-    if (pi < pj) {
-      std::swap(pi, pj);
-      value = numext::conj(value);
-    }
-    const Index t = colToSuper[pj];
-    if (!folded[t] || (removed && (removed[pi] || removed[pj]))) return;
-    entries.push_back(Entry{t, StorageIndex(pi), StorageIndex(pj), value});
+    appendInputChange(entries, perm, colToSuper, folded, removed, row, col, value);
   };
   // the entries of an outer vector \a outer of the new store (\a previous false) or of the
   // previous one, added with their sign, as factored: a diagonal entry d is offset + scale d
