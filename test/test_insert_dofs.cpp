@@ -880,6 +880,64 @@ TEST_CASE_TEMPLATE("repeated cut/merge cycles reuse their buffers: the same fact
   }
 }
 
+TEST_CASE_TEMPLATE("a failed insertDofs keeps the deferred corrections that earlier folds left", Cfg, UC_CORE_CONFIGS) {
+  // the folds of a cut and of its merge leave corrections of the folded supernodes' cached update
+  // matrices deferred (a grid large enough that they pile up slower than they are applied); the
+  // next update sets them aside with those matrices, and a failed one must put them back: the
+  // updates after it fold from the same caches
+  typedef typename Cfg::FullMatrix FullMatrix;
+  typedef typename Cfg::Scalar Scalar;
+  std::mt19937 g(21);
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  Eigen::gridMesh(48, 40, V, F);
+  SplitGraph<Scalar> G = graphOf<Cfg>(Eigen::cotanLaplacian<Scalar, typename Cfg::StorageIndex>(V, F));
+  const FullMatrix A = G.template matrix<FullMatrix>();
+  const Index n = A.rows();
+  typename Cfg::Solver llt(toInput<Cfg>(A));
+  REQUIRE(llt.info() == Eigen::Success);
+  llt.setUpdateRoute(Eigen::UpdateRoute::Mixed);
+  std::vector<int> seam[3];  // two next to each other, one far from both
+  for (int k = 0; k < 6; ++k)
+    seam[0].push_back(20 * 48 + 14 + k), seam[1].push_back(21 * 48 + 15 + k), seam[2].push_back(4 * 48 + 36 + k);
+  SplitGraph<Scalar> H[3] = {G, G, G};
+  const std::vector<int> origin[3] = {H[0].split(seam[0], g), H[1].split(seam[1], g), H[2].split(seam[2], g)};
+  const FullMatrix Acut[3] = {H[0].template matrix<FullMatrix>(), H[1].template matrix<FullMatrix>(),
+                              H[2].template matrix<FullMatrix>()};
+  for (int round = 0; round < 3; ++round) {
+    const int first = round % 2, second = 1 - first;
+    llt.insertDofs(toInput<Cfg>(Acut[first]), origin[first]);
+    REQUIRE(llt.info() == Eigen::Success);
+    llt.mergeDofs(toInput<Cfg>(A), origin[first]);
+    REQUIRE(llt.info() == Eigen::Success);
+    for (const Scalar diagonal : {Scalar(-1), Scalar(1e-7)}) {  // (1e-7: the copies' pivots pass, the top's fail)
+      FullMatrix bad = Acut[second];
+      for (Index c = n; c < bad.rows(); ++c) bad.coeffRef(c, c) = diagonal;
+      llt.insertDofs(toInput<Cfg>(bad), origin[second]);
+      CHECK(llt.info() == Eigen::NumericalIssue);
+      CHECK(llt.rows() == n);
+      checkAgainstFresh<Cfg>(llt, A, g, lowRankTolerance<Cfg>());
+    }
+    // a cut far away refactors its path: the top reads the cached update matrices of the
+    // supernodes the failed cut left clean again (their deferred corrections included)
+    llt.setUpdateRoute(Eigen::UpdateRoute::PartialRefactorization);
+    llt.insertDofs(toInput<Cfg>(Acut[2]), origin[2]);
+    REQUIRE(llt.info() == Eigen::Success);
+    checkAgainstFresh<Cfg>(llt, Acut[2], g, lowRankTolerance<Cfg>());
+    llt.mergeDofs(toInput<Cfg>(A), origin[2]);
+    REQUIRE(llt.info() == Eigen::Success);
+    checkAgainstFresh<Cfg>(llt, A, g, lowRankTolerance<Cfg>());
+    llt.setUpdateRoute(Eigen::UpdateRoute::Mixed);
+    llt.insertDofs(toInput<Cfg>(Acut[second]), origin[second]);
+    REQUIRE(llt.info() == Eigen::Success);
+    CHECK(llt.lastUpdate().route == Eigen::UpdateRoute::Mixed);
+    checkAgainstFresh<Cfg>(llt, Acut[second], g, lowRankTolerance<Cfg>());
+    llt.mergeDofs(toInput<Cfg>(A), origin[second]);
+    REQUIRE(llt.info() == Eigen::Success);
+    checkAgainstFresh<Cfg>(llt, A, g, lowRankTolerance<Cfg>());
+  }
+}
+
 TEST_CASE_TEMPLATE("bad insertDofs/mergeDofs input leaves the object as it was", Cfg, UC_CORE_CONFIGS) {
   typedef typename Cfg::FullMatrix FullMatrix;
   typedef typename Cfg::Scalar Scalar;

@@ -241,6 +241,11 @@ struct FactorStructureBackup {
   std::vector<std::vector<StorageIndex> > rows, parentPosition;  ///< dirty supernodes only
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > values;          ///< dirty supernodes only
   std::vector<UpdateBuffer<Scalar> > cache;                        ///< dirty supernodes only
+  /** The deferred corrections of the dirty supernodes' cached update matrices, set aside with
+    * them rather than applied: a refactored supernode never needs them, a folded one carries them
+    * on (extended to its new rows), and only a refactored child of a folded one, whose previous
+    * update matrix the fold compares with the new one, applies them (applyPendingTo()). */
+  std::vector<std::vector<typename SupernodalNumeric<Scalar, StorageIndex>::Correction> > pending;
   /** The previous call's cached update matrices, kept as buffers for this call's dirty supernodes
     * (by size): a buffer that is already allocated, touched and large enough needs neither the
     * page faults nor the zeroing of a new one (the update matrices of an insertion and of the
@@ -261,6 +266,7 @@ struct FactorStructureBackup {
     spareValues.clear();
     for (Index s : dirty) {
       rows[s].clear();
+      if (s < Index(pending.size())) pending[s].clear();
       if (values[s].size() > 0) spareValues.add(values[s].size(), values[s]);  // (leaves it empty)
       if (!cache[s].empty()) spareCache.add(Index(cache[s].capacity()), cache[s]);  // (by capacity: what it can hold)
       UpdateBuffer<Scalar>().swap(cache[s]);
@@ -268,6 +274,19 @@ struct FactorStructureBackup {
     }
     spareCache.seal();
     spareValues.seal();
+  }
+
+  /** Sets aside the deferred corrections of the cached update matrices of the \a dirty
+    * supernodes (with their matrices: see pending). */
+  void takePending(SupernodalNumeric<Scalar, StorageIndex>& numeric, Index count, const std::vector<Index>& dirty) {
+    pending.resize(count);
+    for (Index s : dirty) pending[s].swap(numeric.pendingCorrections(s));
+  }
+
+  /** Applies the set-aside corrections of supernode \a s to its previous update matrix (cache[s],
+    * \a m × \a m), which is then exact on its own. */
+  void applyPendingTo(Index s, Index m) {
+    if (!pending[s].empty()) SupernodalNumeric<Scalar, StorageIndex>::applyCorrectionsTo(pending[s], m, cache[s].data());
   }
 
   /** Gives \a block (empty) the storage of a spare block of exactly rows × cols entries, if there
@@ -322,6 +341,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
   backup.parentPosition.resize(ns);
   backup.values.resize(ns);
   backup.cache.resize(ns);
+  backup.pending.resize(ns);
   for (Index s = 0; s < ns; ++s) {
     // a clean supernode wholly below the first moved column stays as it is, unread (backup.firstCol
     // and backup.ncols are written for the dirty supernodes only)

@@ -376,6 +376,21 @@ void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index 
   }
 }
 
+/** \internal The deferred corrections \a previous of a previous update matrix, extended as
+  * extendUpdateMatrix() extends the matrix (row i to row \a at[i] of \a m, zero rows for the
+  * copies), appended to \a out. */
+template <typename Correction>
+void extendCorrections(const std::vector<Correction>& previous, const std::vector<Index>& at, Index m,
+                       std::vector<Correction>& out) {
+  for (const Correction& c : previous) {
+    eigen_assert(c.W.rows() == Index(at.size()) && "a deferred correction of another shape than its update matrix");
+    out.emplace_back();
+    out.back().sign = c.sign;
+    out.back().W.setZero(m, c.W.cols());
+    for (Index i = 0; i < Index(at.size()); ++i) out.back().W.row(at[i]) = c.W.row(i);
+  }
+}
+
 /** \internal Gives a folded supernode its previous block and update matrix, written into its new
   * rows and columns: the rows of the copies it gained are zero and the columns of the copies it
   * gained (an insertion of copies of its own dofs) are those of a diagonal entry
@@ -658,6 +673,7 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
     U.swap(backup.cache[s]);
   };
   previousStructure();  // (the node now holds its previous rows, block and update matrix)
+  numeric.pendingCorrections(s).swap(backup.pending[s]);  // (and its update matrix's deferred corrections)
   const bool ok = foldIntoSupernode(f, numeric, s, passUp, static_cast<const char*>(nullptr), ws, flops,
                                     &backup.parentPosition);
   const Index oldNr = node.nrows(), oldNc = node.ncols, oldM = oldNr - oldNc;
@@ -739,6 +755,7 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
       if (bound[c] == 0) continue;
       auto& child = f.nodes[c];
       const Index m = child.below(), oldNc = backup.ncols[c], oldM = Index(backup.rows[c].size()) - oldNc;
+      backup.applyPendingTo(c, oldM);  // (the fold compares the new update matrix with the exact previous one)
       const Scalar* oldU = backup.cache[c].data();
       const FoldBoundary& b = boundary[bound[c] - 1];
       if (merging) {  // on the previous rows below: the new update matrix gets zero rows at the merged dofs
@@ -763,8 +780,12 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
     } else if (captured) {
       auto& node = f.nodes[s];
       if (takePreviousBlock(node, backup.rows[s], backup.values[s], backup.cache[s], newPosition, at, numeric.cache()[s],
-                            runs, pivotOf))
+                            runs, pivotOf)) {
         taken.push_back(s);
+        numeric.pendingCorrections(s).swap(backup.pending[s]);  // (its update matrix's deferred corrections come along)
+      } else {  // extended like the update matrix (rows \a at); the backup keeps its own for a revert
+        extendCorrections(backup.pending[s], at, node.below(), numeric.pendingCorrections(s));
+      }
       const Index p = f.parent[s];
       captured = foldIntoSupernode(f, numeric, s, p != -1 && folded[p], removed, ws, flops);
     }

@@ -404,14 +404,17 @@ class SupernodalNumeric {
   /** The deferred corrections of supernode \a s (their rows of removed dofs are zeroed with U's). */
   std::vector<Correction>& pendingCorrections(Index s) { return m_pending[s]; }
   /** Applies the deferred corrections of supernode \a s to its cached update matrix. \returns the flops. */
-  double applyCorrections(const Factor& f, Index s) {
+  double applyCorrections(const Factor& f, Index s) { return applyCorrectionsTo(m_pending[s], f.nodes[s].below(), m_cache[s].data()); }
+  /** Applies the corrections \a list (emptied) to the update matrix \a U (m × m, lower triangle),
+    * e.g. a previous update matrix set aside with its corrections by an update. \returns the flops. */
+  static double applyCorrectionsTo(std::vector<Correction>& list, Index m, Scalar* U) {
     double flops = 0;
-    const Index m = f.nodes[s].below();
-    for (const Correction& c : m_pending[s]) {
-      herkLower(m, c.W.cols(), c.sign, c.W.data(), m, m_cache[s].data(), m);
+    for (const Correction& c : list) {
+      eigen_assert(c.W.rows() == m && "a deferred correction of another shape than its update matrix");
+      herkLower(m, c.W.cols(), c.sign, c.W.data(), m, U, m);
       flops += double(m) * double(m) * double(c.W.cols());
     }
-    m_pending[s].clear();
+    list.clear();
     return flops;
   }
   /** Makes the rows and columns of removed dofs (\a removed: flags by permuted column) in

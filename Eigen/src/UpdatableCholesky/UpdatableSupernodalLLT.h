@@ -1005,9 +1005,9 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreByFolds(
   backup.parentPosition.resize(ns);
   backup.firstCol.resize(ns);
   backup.ncols.resize(ns);
+  backup.takePending(m_numeric, ns, dirty);  // (with the update matrices, unapplied)
   for (Index s : dirty) {
     auto& node = m_factor.nodes[s];
-    m_numeric.applyCorrections(m_factor, s);  // (set aside as they are: no deferred parts)
     backup.firstCol[s] = node.firstCol;
     backup.ncols[s] = node.ncols;
     backup.rows[s].assign(node.rows.begin(), node.rows.end());
@@ -1625,8 +1625,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
 
   // 4. The new structure and input; the previous ones kept aside for a revert.
   FactorStructureBackup<Scalar, StorageIndex>& backup = m_structureBackup;
-  if (m_numeric.hasCachedUpdates())  // the dirty caches are set aside as they are: no deferred parts
-    for (Index s : dirty) m_numeric.applyCorrections(m_factor, s);
+  if (m_numeric.hasCachedUpdates())  // the dirty caches' deferred corrections are set aside with them, unapplied
+    backup.takePending(m_numeric, m_factor.count(), dirty);
   std::vector<FreshEntry<StorageIndex> >& fresh = diff.freshEntries;
   fresh.resize(diff.fresh.size());
   for (Index k = 0; k < Index(fresh.size()); ++k) {  // in the lower triangle of the new C
@@ -1872,7 +1872,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     m_maxRows = oldMaxRows;
     m_totalFlops = oldTotalFlops;
     m_numeric.structureChanged();
-    for (Index s : dirty) m_numeric.discardCorrections(s);
+    for (Index s : dirty) {  // (a taken supernode is recomputed below: its list does not matter)
+      m_numeric.discardCorrections(s);
+      if (!backup.pending[s].empty()) m_numeric.pendingCorrections(s).swap(backup.pending[s]);
+    }
     if (!taken.empty() && route != UpdateRoute::Refactorization) {  // their previous values left the backup
       m_numeric.cacheRestored();
       const Index again = m_numeric.refactorize(m_factor, numericInput(), taken, threadCount());
