@@ -133,6 +133,8 @@ struct Sample
   double ms = kNaN;            ///< update + solve
   double callMs = kNaN;        ///< the update alone, wall time (ours: the insertDofs/removeDofs call)
   double updateMs = kNaN;      ///< ours: lastUpdate().seconds
+  /** ours: lastUpdate()'s phases (compare, structure, plan, numeric) and the rest of its seconds */
+  double phaseMs[5] = {kNaN, kNaN, kNaN, kNaN, kNaN};
   double extraMs = kNaN;       ///< ours: mergeDofs/restoreDofs afterwards; rowadd: its per-seam setup
   double flopFraction = kNaN;  ///< update flops / full factorization flops (each method's own count)
   double error = kNaN;         ///< relative difference to ours insert (ours: backward error)
@@ -148,6 +150,7 @@ struct Sample
 struct Summary
 {
   bench::Samples ms, call, update, extra, flops, dirty;
+  bench::Samples phase[5];  ///< ours: lastUpdate()'s phases and the rest
   std::map<std::string, int> routes;
   double worstError = 0;
 
@@ -157,6 +160,8 @@ struct Summary
     ms.add(s.ms);
     if (!std::isnan(s.callMs)) call.add(s.callMs);
     if (!std::isnan(s.updateMs)) update.add(s.updateMs);
+    for (int k = 0; k < 5; ++k)
+      if (!std::isnan(s.phaseMs[k])) phase[k].add(s.phaseMs[k]);
     if (!std::isnan(s.extraMs)) extra.add(s.extraMs);
     if (!std::isnan(s.flopFraction)) flops.add(s.flopFraction);
     if (s.dirty >= 0) dirty.add(double(s.dirty));
@@ -391,6 +396,13 @@ private:
     const Eigen::UpdateStatistics& st = m_ours.lastUpdate();
     s.flopFraction = st.flopFraction;
     s.updateMs = st.seconds * 1e3;
+    const double phases[4] = {st.compareSeconds, st.structureSeconds, st.planSeconds, st.numericSeconds};
+    s.phaseMs[4] = s.updateMs;
+    for (int k = 0; k < 4; ++k)
+    {
+      s.phaseMs[k] = phases[k] * 1e3;
+      s.phaseMs[4] -= s.phaseMs[k];
+    }
     s.route = routeName(st.route);
     s.dirty = long(st.dirtySupernodes);
   }
@@ -629,6 +641,22 @@ private:
                   fmtMs(rm.call.median()).c_str(), fmtMs(rm.update.median()).c_str(),
                   fmtMs(rm.call.median() - rm.update.median()).c_str(),
                   fmtMs(in.ms.median() - in.call.median()).c_str(), fmtMs(rm.ms.median() - rm.call.median()).c_str());
+    }
+
+    std::printf("\n  %s, the phases of insertDofs [ms, medians of each]: before = the call's wall time outside\n"
+                "  lastUpdate().seconds (checks, the new layout), then lastUpdate()'s compareSeconds, structureSeconds,\n"
+                "  planSeconds, numericSeconds, and the rest (commit)\n",
+                m_name.c_str());
+    std::printf("  %5s | %9s %9s %9s %9s %9s %9s | %10s\n", "l", "before", "compare", "structure", "plan", "numeric", "rest",
+                "removeDofs");
+    for (const Row& row : m_rows)
+    {
+      const Summary& in = row.summary[insert];
+      const Summary& rm = row.summary[remove];
+      std::printf("  %5d | %9s %9s %9s %9s %9s %9s | %10s\n", row.l, fmtMs(in.call.median() - in.update.median()).c_str(),
+                  fmtMs(in.phase[0].median()).c_str(), fmtMs(in.phase[1].median()).c_str(),
+                  fmtMs(in.phase[2].median()).c_str(), fmtMs(in.phase[3].median()).c_str(),
+                  fmtMs(in.phase[4].median()).c_str(), fmtMs(rm.call.median()).c_str());
     }
 
     double worst = 0;

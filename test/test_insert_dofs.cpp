@@ -800,6 +800,13 @@ TEST_CASE_TEMPLATE("insertDofs refactors only the dirty part", Cfg, uctest::d_in
   llt.insertDofs(toInput<Cfg>(G.template matrix<FullMatrix>()), origin);
   REQUIRE(llt.info() == Eigen::Success);
   const Eigen::UpdateStatistics& st = llt.lastUpdate();
+  // its phases are parts of its time, in order: none negative, together at most the whole
+  const double phases = st.compareSeconds + st.structureSeconds + st.planSeconds + st.numericSeconds;
+  CHECK(st.compareSeconds >= 0);
+  CHECK(st.structureSeconds >= 0);
+  CHECK(st.planSeconds >= 0);
+  CHECK(st.numericSeconds > 0);  // (the dirty supernodes were refactored or folded)
+  CHECK(phases <= st.seconds + 1e-12);
   CHECK((st.route == Eigen::UpdateRoute::PartialRefactorization || st.route == Eigen::UpdateRoute::Mixed));
   CHECK(st.flopFraction < 0.8);
   CHECK(st.dirtySupernodes < llt.supernodeCount() / 4);
@@ -816,6 +823,8 @@ TEST_CASE_TEMPLATE("insertDofs refactors only the dirty part", Cfg, uctest::d_in
   REQUIRE(llt.info() == Eigen::Success);
   CHECK(llt.lastUpdate().dirtySupernodes == 0);
   CHECK(llt.lastUpdate().flops == 0);
+  CHECK(llt.lastUpdate().numericSeconds == 0);  // (only the compare)
+  CHECK(llt.lastUpdate().compareSeconds == llt.lastUpdate().seconds);
   checkAgainstFresh<Cfg>(llt, same, g);
   llt.mergeDofs(toInput<Cfg>(same), identity);
   REQUIRE(llt.info() == Eigen::Success);
@@ -826,7 +835,16 @@ TEST_CASE_TEMPLATE("insertDofs refactors only the dirty part", Cfg, uctest::d_in
   llt.insertDofs(toInput<Cfg>(changed), identity);
   REQUIRE(llt.info() == Eigen::Success);
   CHECK(llt.lastUpdate().dirtySupernodes > 0);
+  CHECK(llt.lastUpdate().numericSeconds > 0);
   checkAgainstFresh<Cfg>(llt, changed, g);
+  // a removal has no such phases: they are zero, not left from the call before
+  llt.removeDofs(std::vector<int>{3000});
+  REQUIRE(llt.info() == Eigen::Success);
+  CHECK(llt.lastUpdate().seconds > 0);
+  CHECK(llt.lastUpdate().compareSeconds == 0);
+  CHECK(llt.lastUpdate().structureSeconds == 0);
+  CHECK(llt.lastUpdate().planSeconds == 0);
+  CHECK(llt.lastUpdate().numericSeconds == 0);
 }
 
 TEST_CASE_TEMPLATE("repeated cut/merge cycles reuse their buffers: the same factor, bounded memory", Cfg,

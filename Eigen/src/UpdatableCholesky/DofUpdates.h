@@ -43,6 +43,15 @@ struct UpdateStatistics {
   double flops = 0;            ///< dense flops spent
   double flopFraction = 0;     ///< flops / flops of a full factorization
   double seconds = 0;          ///< wall time of the update
+  /** \name Where insertDofs(), mergeDofs() and updateColumns() spent #seconds (zero after
+    * removeDofs() and restoreDofs(); the rest of #seconds is the commit, or the revert of a
+    * failed update, after the numeric work)
+    * @{ */
+  double compareSeconds = 0;    ///< comparing the new matrix with the current one, checking its pattern
+  double structureSeconds = 0;  ///< marking the dirty supernodes and relabeling the factor, its input maps and the permutation (Algorithm 4's symbolic part)
+  double planSeconds = 0;       ///< choosing which dirty supernodes are refactored and which are folded
+  double numericSeconds = 0;    ///< refactorizations and folds
+  /** @} */
 };
 
 namespace internal {

@@ -1579,8 +1579,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     diff.commit(m_store);                                        // with no interior vertex): nothing to do
     m_info = Success;
     recordUpdate(UpdateRoute::PartialRefactorization, 0, std::vector<Index>(), 0.0, start);
+    m_lastUpdate.compareSeconds = m_lastUpdate.seconds;
     return;
   }
+  const auto compared = std::chrono::steady_clock::now();  // (the phases of lastUpdate())
   if (!change.layoutReady) buildInsertionLayout(change);
   // 3. Dirty supernodes: the paths from the changed columns, origins and merged dofs to the roots.
   std::vector<char>& mark = m_workspace.mark;
@@ -1698,6 +1700,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     m_totalFlops += node.flops() - node.flopsOf(backup.ncols[s], Index(backup.rows[s].size()) - backup.ncols[s]);
   }
   m_numeric.structureChanged();
+  const auto relabeled = std::chrono::steady_clock::now();
 
   // 5. Refactor the dirty supernodes (or everything, when that is as cheap); or refactor the
   //    lower dirty supernodes and fold the change into the top ones (LowRankTopUpdate.h).
@@ -1846,7 +1849,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     spentFlops = dirtyFlops;
     return m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
   };
+  const auto planned = std::chrono::steady_clock::now();
   const Index bad = run();
+  const auto computed = std::chrono::steady_clock::now();
   if (bad >= 0) {  // not positive definite: everything goes back as it was
     m_failedColumn = m_Pinv.indices()[bad];
     restoreFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
@@ -1904,6 +1909,13 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   for (Index s : dirty) mark[s] = 0;
   backup.release(m_factor, dirty);  // the previous blocks are not kept past the call
   recordUpdate(route, changedCount, dirty, spentFlops, start);
+  auto seconds = [](std::chrono::steady_clock::time_point from, std::chrono::steady_clock::time_point to) {
+    return std::chrono::duration<double>(to - from).count();
+  };
+  m_lastUpdate.compareSeconds = seconds(start, compared);
+  m_lastUpdate.structureSeconds = seconds(compared, relabeled);
+  m_lastUpdate.planSeconds = seconds(relabeled, planned);
+  m_lastUpdate.numericSeconds = seconds(planned, computed);
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
