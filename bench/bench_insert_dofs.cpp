@@ -397,12 +397,13 @@ private:
     s.flopFraction = st.flopFraction;
     s.updateMs = st.seconds * 1e3;
     const double phases[4] = {st.compareSeconds, st.structureSeconds, st.planSeconds, st.numericSeconds};
-    s.phaseMs[4] = s.updateMs;
+    s.phaseMs[4] = s.updateMs;  // (the rest, at least 0: the phases are parts of seconds, up to rounding)
     for (int k = 0; k < 4; ++k)
     {
       s.phaseMs[k] = phases[k] * 1e3;
       s.phaseMs[4] -= s.phaseMs[k];
     }
+    s.phaseMs[4] = std::max(0.0, s.phaseMs[4]);
     s.route = routeName(st.route);
     s.dirty = long(st.dirtySupernodes);
   }
@@ -644,8 +645,8 @@ private:
     }
 
     std::printf("\n  %s, the phases of insertDofs [ms, medians of each]: before = the call's wall time outside\n"
-                "  lastUpdate().seconds (checks, the new layout), then lastUpdate()'s compareSeconds, structureSeconds,\n"
-                "  planSeconds, numericSeconds, and the rest (commit)\n",
+                "  lastUpdate().seconds, then lastUpdate()'s compareSeconds (checks and compare), structureSeconds (layout\n"
+                "  and relabeling), planSeconds, numericSeconds, and the rest (commit)\n",
                 m_name.c_str());
     std::printf("  %5s | %9s %9s %9s %9s %9s %9s | %10s\n", "l", "before", "compare", "structure", "plan", "numeric", "rest",
                 "removeDofs");

@@ -42,13 +42,13 @@ struct UpdateStatistics {
   Index dirtyColumns = 0;      ///< columns of L recomputed
   double flops = 0;            ///< dense flops spent
   double flopFraction = 0;     ///< flops / flops of a full factorization
-  double seconds = 0;          ///< wall time of the update
+  double seconds = 0;          ///< wall time of the update call, its checks of the input included
   /** \name Where insertDofs(), mergeDofs() and updateColumns() spent #seconds (zero after
     * removeDofs() and restoreDofs(); the rest of #seconds is the commit, or the revert of a
     * failed update, after the numeric work)
     * @{ */
-  double compareSeconds = 0;    ///< comparing the new matrix with the current one, checking its pattern
-  double structureSeconds = 0;  ///< marking the dirty supernodes and relabeling the factor, its input maps and the permutation (Algorithm 4's symbolic part)
+  double compareSeconds = 0;    ///< checking the input, comparing the new matrix with the current one and its pattern
+  double structureSeconds = 0;  ///< the new layout, marking the dirty supernodes, relabeling the factor, its input maps and the permutation (Algorithm 4's symbolic part)
   double planSeconds = 0;       ///< choosing which dirty supernodes are refactored and which are folded
   double numericSeconds = 0;    ///< refactorizations and folds
   /** @} */

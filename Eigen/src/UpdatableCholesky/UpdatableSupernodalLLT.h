@@ -450,6 +450,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   std::vector<StorageIndex> m_removedList;
   UpdateRoute m_route = UpdateRoute::Automatic;
   UpdateStatistics m_lastUpdate;
+  std::chrono::steady_clock::time_point m_updateStart;  ///< when the current update call began (beginUpdate())
   internal::updatable_cholesky::UpdateWorkspace<Scalar> m_workspace;
   internal::updatable_cholesky::InputDiff<Scalar, StorageIndex> m_inputDiff;  ///< scratch of insertDofs/mergeDofs
   double m_totalFlops = 0;
@@ -502,6 +503,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     internal::updatable_cholesky::DofRelabeling<StorageIndex> relabel;
     bool merging = false;
     bool layoutReady = false;  ///< relabel and newPerm are built (buildInsertionLayout())
+    double layoutSeconds = 0;  ///< the time spent building them before replaceDofs() (a structure phase)
     bool compareAll = true;    ///< false: the input diff reads only the outer vectors in compared
     std::vector<StorageIndex> compared;  ///< sorted, new numbering (a changed list was given)
     std::vector<char> listed;            ///< scratch by dof, zero between calls
@@ -775,6 +777,7 @@ template <typename MatrixType_, int UpLo_, typename Ordering_>
 bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::beginUpdate() {
   eigen_assert(m_factorizationIsOk && "UpdatableSupernodalLLT: updates need a successful factorization first.");
   m_lastUpdate = UpdateStatistics();
+  m_updateStart = std::chrono::steady_clock::now();  // (lastUpdate().seconds: the whole call, its checks included)
   m_failedColumn = -1;
   if (!m_factorizationIsOk) {
     m_info = InvalidInput;
@@ -788,7 +791,7 @@ template <typename Revert>
 void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
     const std::vector<StorageIndex>& permutedColumns, bool isRemoval, Revert&& revert) {
   using namespace internal::updatable_cholesky;
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = m_updateStart;
   m_sparseLIsValid = false;
   std::vector<Index> dirty = dirtySupernodes(m_factor, m_store, m_transposed, m_P.indices().data(),
                                              m_Pinv.indices().data(), permutedColumns, m_workspace);
@@ -1200,7 +1203,12 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceWithCopies(co
   change.preStart[total] = StorageIndex(total);
   if (!change.compareAll) collectCompared(change, total);
   change.layoutReady = false;
-  if (total > n) buildInsertionLayout(change);  // (without copies, only once the matrix is known to differ)
+  change.layoutSeconds = 0;
+  if (total > n) {  // (without copies, only once the matrix is known to differ)
+    const auto layoutStart = std::chrono::steady_clock::now();
+    buildInsertionLayout(change);
+    change.layoutSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - layoutStart).count();
+  }
   std::vector<StorageIndex> originPositions(change.touched.size());
   for (std::size_t k = 0; k < originPositions.size(); ++k) originPositions[k] = perm[change.touched[k]];
   replaceDofs(a, change);
@@ -1379,6 +1387,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     change.preStart[total] = StorageIndex(at);
   }
   change.identityLength = prefix;
+  const auto layoutStart = std::chrono::steady_clock::now();
   auto& relabel = change.relabel;
   relabel.copies.resize(n, 0);  // (a merge makes no copies: zero, always)
   relabel.buildForDrops(change.droppedAt);
@@ -1387,6 +1396,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   const StorageIndex* oldOfNew = change.oldOfNew.data();
   relabel.newPositionsOf(total, [perm, oldOfNew](Index x) { return perm[oldOfNew[x]]; }, change.newPerm.data());
   change.layoutReady = true;
+  change.layoutSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - layoutStart).count();
   if (!change.compareAll) collectCompared(change, total);
   replaceDofs(a, change);
   return *this;
@@ -1532,7 +1542,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges
 template <typename MatrixType_, int UpLo_, typename Ordering_>
 void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const MatrixType& a, DofChange& change) {
   using namespace internal::updatable_cholesky;
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = m_updateStart;
   m_sparseLIsValid = false;
   MatrixType copy;
   const MatrixType* pa = compressedInput(a, copy);
@@ -1912,8 +1922,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   auto seconds = [](std::chrono::steady_clock::time_point from, std::chrono::steady_clock::time_point to) {
     return std::chrono::duration<double>(to - from).count();
   };
-  m_lastUpdate.compareSeconds = seconds(start, compared);
-  m_lastUpdate.structureSeconds = seconds(compared, relabeled);
+  // (the layout an insertion or merge built before the compare is structure work)
+  m_lastUpdate.compareSeconds = (std::max)(0.0, seconds(start, compared) - change.layoutSeconds);
+  m_lastUpdate.structureSeconds = seconds(compared, relabeled) + (seconds(start, compared) - m_lastUpdate.compareSeconds);
   m_lastUpdate.planSeconds = seconds(relabeled, planned);
   m_lastUpdate.numericSeconds = seconds(planned, computed);
 }
