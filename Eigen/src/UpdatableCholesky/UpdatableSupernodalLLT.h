@@ -451,6 +451,11 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   UpdateRoute m_route = UpdateRoute::Automatic;
   UpdateStatistics m_lastUpdate;
   std::chrono::steady_clock::time_point m_updateStart;  ///< when the current update call began (beginUpdate())
+  /** Seconds from \a from to \a to (lastUpdate()'s times). */
+  static double secondsBetween(std::chrono::steady_clock::time_point from,
+                               std::chrono::steady_clock::time_point to = std::chrono::steady_clock::now()) {
+    return std::chrono::duration<double>(to - from).count();
+  }
   internal::updatable_cholesky::UpdateWorkspace<Scalar> m_workspace;
   internal::updatable_cholesky::InputDiff<Scalar, StorageIndex> m_inputDiff;  ///< scratch of insertDofs/mergeDofs
   double m_totalFlops = 0;
@@ -577,7 +582,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
       for (Index s : dirty) st.dirtyColumns += m_factor.nodes[s].ncols;
     st.flops = flops;
     st.flopFraction = m_totalFlops > 0 ? st.flops / m_totalFlops : 0;
-    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    st.seconds = secondsBetween(start);
     if (all)
       m_solveCache.invalidate();
     else
@@ -1207,7 +1212,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceWithCopies(co
   if (total > n) {  // (without copies, only once the matrix is known to differ)
     const auto layoutStart = std::chrono::steady_clock::now();
     buildInsertionLayout(change);
-    change.layoutSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - layoutStart).count();
+    change.layoutSeconds = secondsBetween(layoutStart);
   }
   std::vector<StorageIndex> originPositions(change.touched.size());
   for (std::size_t k = 0; k < originPositions.size(); ++k) originPositions[k] = perm[change.touched[k]];
@@ -1396,7 +1401,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   const StorageIndex* oldOfNew = change.oldOfNew.data();
   relabel.newPositionsOf(total, [perm, oldOfNew](Index x) { return perm[oldOfNew[x]]; }, change.newPerm.data());
   change.layoutReady = true;
-  change.layoutSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - layoutStart).count();
+  change.layoutSeconds = secondsBetween(layoutStart);
   if (!change.compareAll) collectCompared(change, total);
   replaceDofs(a, change);
   return *this;
@@ -1919,14 +1924,12 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   for (Index s : dirty) mark[s] = 0;
   backup.release(m_factor, dirty);  // the previous blocks are not kept past the call
   recordUpdate(route, changedCount, dirty, spentFlops, start);
-  auto seconds = [](std::chrono::steady_clock::time_point from, std::chrono::steady_clock::time_point to) {
-    return std::chrono::duration<double>(to - from).count();
-  };
   // (the layout an insertion or merge built before the compare is structure work)
-  m_lastUpdate.compareSeconds = (std::max)(0.0, seconds(start, compared) - change.layoutSeconds);
-  m_lastUpdate.structureSeconds = seconds(compared, relabeled) + (seconds(start, compared) - m_lastUpdate.compareSeconds);
-  m_lastUpdate.planSeconds = seconds(relabeled, planned);
-  m_lastUpdate.numericSeconds = seconds(planned, computed);
+  const double beforeCompare = secondsBetween(start, compared), layout = (std::min)(change.layoutSeconds, beforeCompare);
+  m_lastUpdate.compareSeconds = beforeCompare - layout;
+  m_lastUpdate.structureSeconds = secondsBetween(compared, relabeled) + layout;
+  m_lastUpdate.planSeconds = secondsBetween(relabeled, planned);
+  m_lastUpdate.numericSeconds = secondsBetween(planned, computed);
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
