@@ -47,6 +47,7 @@ struct DofRelabeling {
     * dropped): kept old column k moves to k + the stepShift of every step with stepAt < k;
     * steps < 0 when there are more. */
   enum { MaxSteps = 8 };
+  enum { LookUp = -2 };  ///< steps of a relabeling built by buildWithRoom(): newPositionsOf() reads newPosition
   StorageIndex stepAt[MaxSteps], stepShift[MaxSteps];
   Index steps = -1;
   /** With more steps: the shift of the old columns of each block of 2^BlockBits (the same for
@@ -54,6 +55,8 @@ struct DofRelabeling {
   enum { BlockBits = 8 };
   std::vector<StorageIndex> blockShift;
   static constexpr StorageIndex MixedBlock = NumTraits<StorageIndex>::highest();
+  /** Built by buildForCopies(): the old columns move by runs (forEachCopyRun()). */
+  bool byRuns = false;
 
   /** out[i] = the new position of the kept old column oldColumn(i), for i < count, in one pass
     * in order rather than a load from newPosition at a random place per column (the columns
@@ -62,6 +65,11 @@ struct DofRelabeling {
     * (a table that stays in cache), newPosition only for the blocks that hold a step. */
   template <typename OldColumn>
   void newPositionsOf(Index count, OldColumn&& oldColumn, StorageIndex* EIGEN_RESTRICT out) const {
+    if (steps == LookUp) {  // (a layout laid out anew: read off newPosition)
+      const StorageIndex* to = newPosition.data();
+      for (Index i = 0; i < count; ++i) out[i] = to[oldColumn(i)];
+      return;
+    }
     if (steps < 0) {
       const StorageIndex* block = blockShift.data();
       const StorageIndex* to = newPosition.data();
@@ -89,6 +97,7 @@ struct DofRelabeling {
     * their positions; the rest move by the copies before them, which is written run by run (one
     * run between two origins), in order, without reading copies per column. */
   void buildForCopies(const std::vector<StorageIndex>& at) {
+    byRuns = true;
     const Index n = Index(copies.size());
     Index shift = 0;
     for (StorageIndex p : at) shift += copies[p];
@@ -114,6 +123,46 @@ struct DofRelabeling {
     * as given to buildForCopies()), in order: run(origin, count, begin, end, shift) for each
     * origin with its count copies, placed right after it, and the old columns [begin, end) after
     * it up to the next origin (included), which move by shift (the copies up to this origin's). */
+  /** build() for an insertion that lays the positions of factor \a f out anew (when some origin's
+    * supernode has fewer free positions than the copies it gets, see SupernodalFactor): each
+    * supernode keeps its columns in order, each origin (old positions \a at, increasing,
+    * distinct, copies[] of each) followed by its copies, then its free positions: as many as
+    * it had less the copies it took, and at least roomFor(its new column count). Free old
+    * positions beyond that map to -1; new ones have no old position (-1). */
+  template <typename Factor, typename Room>
+  void buildWithRoom(const std::vector<StorageIndex>& at, const Factor& f, Room&& roomFor) {
+    byRuns = false;
+    steps = LookUp;
+    const Index n = Index(copies.size()), ns = f.count();
+    newPosition.resize(n);
+    StorageIndex* EIGEN_RESTRICT to = newPosition.data();
+    Index shift = 0;
+    std::size_t q = 0;
+    for (Index s = 0; s < ns; ++s) {
+      const Index first = f.nodes[s].firstCol, used = f.nodes[s].ncols, end = f.ownedEnd(s);
+      Index inside = 0;  // the copies placed so far in s
+      for (Index k = first; k < first + used; ++k) {
+        to[k] = StorageIndex(k + shift + inside);
+        if (q < at.size() && Index(at[q]) == k) inside += copies[at[q++]];
+      }
+      const Index free = end - first - used, room = (std::max)(free - inside, Index(roomFor(used + inside)));
+      for (Index i = 0; i < free; ++i) to[first + used + i] = i < room ? StorageIndex(first + used + shift + inside + i) : StorageIndex(-1);
+      shift += inside + room - free;
+    }
+    newSize = n + shift;
+    oldPosition.assign(newSize, StorageIndex(-1));
+    firstMoved = n;
+    for (Index k = n - 1; k >= 0; --k) {
+      if (to[k] < 0) {
+        firstMoved = k;
+        continue;
+      }
+      oldPosition[to[k]] = StorageIndex(k);
+      if (to[k] != k) firstMoved = k;
+    }
+    identityPrefix = firstMoved;
+  }
+
   template <typename Run>
   void forEachCopyRun(const std::vector<StorageIndex>& at, Run&& run) const {
     const Index n = Index(copies.size());
@@ -130,6 +179,7 @@ struct DofRelabeling {
     * move down by the dropped ones before them, written run by run (one run between two dropped
     * columns), in order. */
   void buildForDrops(const std::vector<StorageIndex>& at) {
+    byRuns = false;
     const Index n = Index(copies.size());
     newSize = n - Index(at.size());
     firstMoved = at.empty() ? n : Index(at.front());

@@ -30,11 +30,14 @@ struct PermutedLowerEntries {
 
 /** \internal Permutes the stored kept triangle \a a (outer vectors rows when \a RowMajor) by
   * \a perm (perm[old] = new) into the lower triangle; the sources are pool positions of \a a.
-  * Optionally also returns the strict upper triangle by columns. */
+  * Optionally also returns the strict upper triangle by columns. The permuted numbering has
+  * \a positions columns (a.cols when negative): more than a.cols when the factor keeps free
+  * positions (SupernodalFactor::n), whose columns are empty. */
 template <bool RowMajor, typename Scalar, typename StorageIndex>
 void permuteTriangle(const InputStore<Scalar, StorageIndex>& a, const std::vector<StorageIndex>& perm,
-                     PermutedLowerEntries<StorageIndex>& lower, CompressedPattern<StorageIndex>* upper) {
-  const Index n = a.cols;
+                     PermutedLowerEntries<StorageIndex>& lower, CompressedPattern<StorageIndex>* upper,
+                     Index positions = -1) {
+  const Index n = positions < 0 ? Index(a.cols) : positions;
   const StorageIndex* inner = a.inner.data();
   auto forEachKept = [&](auto&& visit) {
     for (Index o = 0; o < a.outerSize(); ++o)

@@ -43,6 +43,9 @@ struct Supernode {
 template <typename Scalar, typename StorageIndex>
 struct SupernodalFactor {
   typedef Supernode<Scalar, StorageIndex> Node;
+  /** The number of positions: the columns of every supernode and the free positions after them
+    * (SupernodalFactor::ownedEnd()); n >= the number of dofs. At a free position colToSuper
+    * holds its owner; no row list names one. */
   Index n = 0;
   std::vector<Node> nodes;
   std::vector<StorageIndex> parent;         ///< supernodal elimination tree, -1 for roots
@@ -54,6 +57,12 @@ struct SupernodalFactor {
   std::vector<StorageIndex> lastRow;
 
   Index count() const { return Index(nodes.size()); }
+  /** The end of the positions supernode \a s owns: its columns, then its free positions (room
+    * for the copies of later insertions, which no row names), up to the next supernode's first
+    * column (n for the last). */
+  Index ownedEnd(Index s) const { return s + 1 < count() ? nodes[s + 1].firstCol : n; }
+  /** The free positions of supernode \a s. */
+  Index freePositions(Index s) const { return ownedEnd(s) - nodes[s].firstCol - nodes[s].ncols; }
 
   /** Sets lastRow[s] from supernode s's rows (after they changed). */
   void noteLastRow(Index s) { lastRow[s] = nodes[s].rows.empty() ? StorageIndex(-1) : nodes[s].rows.back(); }

@@ -136,10 +136,19 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     return MatrixU(m_sparseL.adjoint());
   }
 
-  /** \returns the permutation P such that the factor is that of \f$ P A P^{-1} \f$. */
-  const PermutationType& permutationP() const { return m_P; }
+  /** \returns the permutation P such that the factor is that of \f$ P A P^{-1} \f$ (after
+    * insertDofs() or mergeDofs(), built on first call after each of them). */
+  const PermutationType& permutationP() const {
+    if (!hasFreePositions()) return m_P;
+    buildPublicPermutation();
+    return m_publicP;
+  }
   /** \returns the inverse of permutationP(). */
-  const PermutationType& permutationPinv() const { return m_Pinv; }
+  const PermutationType& permutationPinv() const {
+    if (!hasFreePositions()) return m_Pinv;
+    buildPublicPermutation();
+    return m_publicPinv;
+  }
 
   /** \returns the determinant of the (shifted) matrix. */
   Scalar determinant() const {
@@ -358,12 +367,17 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   template <typename Rhs>
   Matrix<Scalar, Dynamic, Dynamic> permutedCopy(const MatrixBase<Rhs>& b) const {
     const Ref<const Matrix<Scalar, Dynamic, Dynamic> > from(b.derived());
-    Matrix<Scalar, Dynamic, Dynamic> x(m_n, from.cols());
+    const Index positions = m_factor.n;  // (zeros at the free positions, which no row names)
+    Matrix<Scalar, Dynamic, Dynamic> x(positions, from.cols());
     const StorageIndex* inverse = m_Pinv.indices().data();
+    const bool gaps = hasFreePositions();
     for (Index c = 0; c < from.cols(); ++c) {
       const Scalar* bc = from.col(c).data();
       Scalar* xc = x.col(c).data();
-      for (Index p = 0; p < m_n; ++p) xc[p] = bc[inverse[p]];
+      if (!gaps)
+        for (Index p = 0; p < positions; ++p) xc[p] = bc[inverse[p]];
+      else
+        for (Index p = 0; p < positions; ++p) xc[p] = inverse[p] >= 0 ? bc[inverse[p]] : Scalar(0);
     }
     return x;
   }
@@ -412,6 +426,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     m_threads = 0;
     m_failedColumn = -1;
     m_sparseLIsValid = false;
+    m_publicPermutationIsValid = false;
   }
 
   template <typename F>
@@ -421,12 +436,26 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   }
 
   void buildSparseL() const;
+  /** True when the factor's numbering has free positions (after insertDofs() or mergeDofs()):
+    * m_factor.n > m_n, and m_P is not a permutation of 0..n-1. */
+  bool hasFreePositions() const { return m_analysisIsOk && m_factor.n != m_n; }
+  /** Builds m_publicP, m_publicPinv and m_compressedIndex from m_P and m_Pinv (once per structure). */
+  void buildPublicPermutation() const;
 
   typedef internal::updatable_cholesky::SupernodalFactor<Scalar, StorageIndex> Factor;
   Factor m_factor;
   internal::updatable_cholesky::SupernodalNumeric<Scalar, StorageIndex> m_numeric;
   internal::updatable_cholesky::InputStore<Scalar, StorageIndex> m_store;  ///< kept triangle of the current matrix
+  /** The factor's numbering: m_P maps dof i to its position m_P[i] (its row and column of the
+    * factor), m_Pinv maps each of the m_factor.n positions to its dof, or -1 at a free position
+    * (room kept after a supernode's columns for the copies of later insertions, paper §4.2).
+    * Without free positions both are the permutation and its inverse. */
   PermutationType m_P, m_Pinv;
+  /** permutationP() and its inverse when there are free positions: m_P with them squeezed out
+    * (built lazily), and the map from position to that contiguous numbering. */
+  mutable PermutationType m_publicP, m_publicPinv;
+  mutable std::vector<StorageIndex> m_compressedIndex;
+  mutable bool m_publicPermutationIsValid;
   OrderingType m_ordering;
   SupernodeRelaxation m_relaxation;
   ComputationInfo m_info;
@@ -646,6 +675,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   m_analysisIsOk = false;
   m_factorizationIsOk = false;
   m_sparseLIsValid = false;
+  m_publicPermutationIsValid = false;
   m_solveCache.release();
   m_failedColumn = -1;
   if (a.rows() != a.cols()) {
@@ -756,6 +786,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::factorize(const Matr
 template <typename MatrixType_, int UpLo_, typename Ordering_>
 void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildSparseL() const {
   if (m_sparseLIsValid) return;
+  // (with free positions, every position is written in the contiguous numbering of permutationP())
+  const bool gaps = hasFreePositions();
+  if (gaps) buildPublicPermutation();
+  auto index = [&](Index position) { return gaps ? m_compressedIndex[position] : StorageIndex(position); };
   m_sparseL.resize(m_n, m_n);
   m_sparseL.resizeNonZeros(0);
   m_sparseL.reserve(m_factor.nonZeros());
@@ -765,9 +799,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildSparseL() const
   for (const auto& node : m_factor.nodes) {
     const Index nr = node.nrows();
     for (Index c = 0; c < node.ncols; ++c) {
-      outer[node.firstCol + c] = StorageIndex(nnz);
+      outer[index(node.firstCol + c)] = StorageIndex(nnz);
       for (Index r = c; r < nr; ++r) {
-        m_sparseL.innerIndexPtr()[nnz] = node.rows[r];
+        m_sparseL.innerIndexPtr()[nnz] = index(node.rows[r]);
         m_sparseL.valuePtr()[nnz] = node.values(r, c);
         ++nnz;
       }
@@ -775,6 +809,23 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildSparseL() const
   }
   outer[m_n] = StorageIndex(nnz);
   m_sparseLIsValid = true;
+}
+
+template <typename MatrixType_, int UpLo_, typename Ordering_>
+void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildPublicPermutation() const {
+  if (m_publicPermutationIsValid) return;
+  const Index positions = m_factor.n;
+  const StorageIndex* dofAt = m_Pinv.indices().data();
+  m_compressedIndex.assign(positions, StorageIndex(-1));
+  m_publicP.resize(m_n);
+  m_publicPinv.resize(m_n);
+  for (Index p = 0, k = 0; p < positions; ++p) {  // (the positions' order is the elimination order)
+    if (dofAt[p] < 0) continue;
+    m_compressedIndex[p] = StorageIndex(k);
+    m_publicP.indices()[dofAt[p]] = StorageIndex(k);
+    m_publicPinv.indices()[k++] = dofAt[p];
+  }
+  m_publicPermutationIsValid = true;
 }
 
 
@@ -888,7 +939,7 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreByFolds(
   const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
   constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
   std::vector<char>& restoredFlag = m_restoredScratch;  // by permuted column (zero between calls)
-  restoredFlag.resize(m_n, 0);
+  restoredFlag.resize(m_factor.n, 0);
   for (StorageIndex b : permutedColumns) restoredFlag[b] = 1;
   auto isRestored = [&restoredFlag](Index column) { return (restoredFlag[column] & 1) != 0; };
   struct ClearFlags {  // (on every way out)
@@ -1026,7 +1077,7 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreByFolds(
   }
   {
     std::vector<StorageIndex>& position = m_inputDiff.position;  // (by permuted row, all -1 between uses)
-    if (Index(position.size()) < m_n) position.resize(m_n, StorageIndex(-1));
+    if (Index(position.size()) < m_factor.n) position.resize(m_factor.n, StorageIndex(-1));
     splitInputChanges(entries, [&](Index t) -> const std::vector<StorageIndex>& { return m_factor.nodes[t].rows; },
                       position, ws);
   }
@@ -1196,7 +1247,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceWithCopies(co
   change.identityLength = n;
   const StorageIndex* perm = m_P.indices().data();
   auto& relabel = change.relabel;
-  relabel.copies.resize(n, 0);  // (zero between calls)
+  relabel.copies.resize(m_factor.n, 0);  // (by position; zero between calls)
   for (Index i = n; i < total; ++i) {
     const StorageIndex o = originOf(i);
     change.oldOfNew[i] = StorageIndex(-1);
@@ -1289,10 +1340,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildInsertionLayout
   for (StorageIndex o : change.touched) at.push_back(perm[o]);
   std::sort(at.begin(), at.end());
   at.erase(std::unique(at.begin(), at.end()), at.end());
-  relabel.buildForCopies(at);
+  relabel.buildWithRoom(at, m_factor, [](Index columns) { return (std::max)(Index(2), columns / 4); });
   // each copy right after its origin, copies of one origin in increasing order
   change.newPerm.resize(total);
-  change.placed.resize(n, 0);  // (zero between calls)
+  change.placed.resize(m_factor.n, 0);  // (by position; zero between calls)
   relabel.newPositionsOf(n, [perm](Index i) { return perm[i]; }, change.newPerm.data());  // (the old dofs)
   for (Index i = n; i < total; ++i) {
     const StorageIndex po = perm[change.preList[i]];
@@ -1394,7 +1445,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   change.identityLength = prefix;
   const auto layoutStart = std::chrono::steady_clock::now();
   auto& relabel = change.relabel;
-  relabel.copies.resize(n, 0);  // (a merge makes no copies: zero, always)
+  relabel.copies.resize(m_factor.n, 0);  // (by position; a merge makes no copies: zero, always)
   relabel.buildForDrops(change.droppedAt);
   // the new permutation: each kept dof's column moves down by the dropped columns before it
   change.newPerm.resize(total);
@@ -1538,7 +1589,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges
     }
   }
   std::vector<StorageIndex>& position = diff.position;  // (by permuted row, all -1 between uses)
-  if (Index(position.size()) < n) position.resize(n, StorageIndex(-1));  // (a merge's previous numbering)
+  const Index positions = (std::max)(m_factor.n, m_structureBackup.n);  // (a merge's previous numbering)
+  if (Index(position.size()) < positions) position.resize(positions, StorageIndex(-1));
   splitInputChanges(entries, [&](Index t) -> const std::vector<StorageIndex>& {
     return previousStructure ? m_structureBackup.rows[t] : m_factor.nodes[t].rows;
   }, position, m_workspace);
@@ -1549,6 +1601,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   using namespace internal::updatable_cholesky;
   const auto start = m_updateStart;
   m_sparseLIsValid = false;
+  m_publicPermutationIsValid = false;
   MatrixType copy;
   const MatrixType* pa = compressedInput(a, copy);
   const Index n = m_n, total = pa->rows();
@@ -1664,7 +1717,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   std::vector<Index> movedOwners;  // clean supernodes whose entries moved in the store
   if (diff.inPlace) movedOwners = ownersOfRewrites(m_factor, m_store, diff, perm);
   relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup, diff.position);
-  sortFreshEntries(fresh, total, diff.freshCount, diff.freshSorted);
+  sortFreshEntries(fresh, m_factor.n, diff.freshCount, diff.freshSorted);
   remapAssemblyMaps(m_factor, backup, change.relabel, mark, dirty, diff.posMap, diff.freshSorted, diff.position,
                     diff.inPlace ? &movedOwners : nullptr);
   // the removed flags follow (only the removed dofs' entries are written)
@@ -1673,7 +1726,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   m_removedList.clear();
   for (StorageIndex i : oldRemovedList) m_removedOriginal[i] = m_removedPermuted[perm[i]] = 0;
   m_removedOriginal.resize(total, 0);
-  m_removedPermuted.resize(total, 0);
+  m_removedPermuted.resize(m_factor.n, 0);  // (by position)
   for (StorageIndex i : oldRemovedList) {
     const StorageIndex x = change.newOfOld[i];
     if (x < 0) continue;  // a removed dof merged away
@@ -1684,12 +1737,12 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   // inverse is read off the previous one in order (the relabeling keeps the old columns' order).
   {
     const StorageIndex* oldPinv = m_Pinv.indices().data();
-    change.newPinv.resize(total);
+    change.newPinv.resize(change.relabel.newSize);
     auto newDof = [&change](StorageIndex o) {  // (a merge renumbers only from its first merged dof on)
       return o < 0 || !change.merging || o < change.firstMerged ? o : change.newOfOld[o];
     };
-    const Index unmoved = (std::min)(change.relabel.firstMoved, total);  // (below it, no column moves)
-    if (!change.merging) {  // an insertion: the old columns move by runs (one between two origins), copied as such
+    const Index unmoved = (std::min)(change.relabel.firstMoved, change.relabel.newSize);  // (below it, no column moves)
+    if (!change.merging && change.relabel.byRuns) {  // an insertion: the old columns move by runs (one between two origins), copied as such
       StorageIndex* newPinv = change.newPinv.data();
       std::copy(oldPinv, oldPinv + unmoved, newPinv);
       change.relabel.forEachCopyRun(change.originsAt, [&](Index, Index, Index begin, Index end, Index shift) {
@@ -1697,7 +1750,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       });
     } else {
       for (Index j = 0; j < unmoved; ++j) change.newPinv[j] = newDof(oldPinv[j]);
-      for (Index j = unmoved; j < total; ++j) {
+      for (Index j = unmoved; j < change.relabel.newSize; ++j) {
         const StorageIndex k = change.relabel.oldPosition[j];
         change.newPinv[j] = newDof(k < 0 ? StorageIndex(-1) : oldPinv[k]);
       }
@@ -1879,13 +1932,14 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     m_P.indices().swap(change.newPerm);
     m_Pinv.indices().swap(change.newPinv);
     m_removedOriginal.resize(oldN, 0);
-    m_removedPermuted.resize(oldN, 0);
+    m_removedPermuted.resize(m_factor.n, 0);
     m_removedList.swap(oldRemovedList);
     for (StorageIndex i : m_removedList) m_removedOriginal[i] = m_removedPermuted[m_P.indices()[i]] = 1;
     {  // (the rare failure path rebuilds the assembly maps from the previous matrix)
       std::vector<StorageIndex> previousPerm(m_P.indices().data(), m_P.indices().data() + oldN);
       PermutedLowerEntries<StorageIndex> lower;
-      permuteTriangle<rowMajor>(m_store, previousPerm, lower, static_cast<CompressedPattern<StorageIndex>*>(nullptr));
+      permuteTriangle<rowMajor>(m_store, previousPerm, lower, static_cast<CompressedPattern<StorageIndex>*>(nullptr),
+                                m_factor.n);
       buildAssemblyMaps(lower, m_factor);
     }
     m_n = oldN;
