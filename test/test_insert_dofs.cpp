@@ -607,54 +607,119 @@ TEST_CASE_TEMPLATE("the blocked downdate keeps L L^H - W W^H and agrees with hyp
   }
 }
 
-TEST_CASE_TEMPLATE("a relabeling's new positions agree however they are computed", StorageIndex, int, long) {
-  // DofRelabeling::newPositionsOf() (DofInsertion.h) gives the new positions of the kept old
-  // columns by compares with few steps and by a table of blocks of 2^BlockBits columns with many
-  // (newPosition itself in the blocks that hold a step): both must agree with newPosition, for
-  // copies and for drops, with steps at block boundaries, at the first and at the last column.
+TEST_CASE_TEMPLATE("a relabeling moves positions only inside the supernodes that change", StorageIndex, int, long) {
+  // DofRelabeling (DofInsertion.h) on synthetic layouts of supernodes with free positions after
+  // their columns: a local insertion (buildLocalCopies()) puts each origin's copies right after
+  // it and moves only the columns after the first origin of a supernode, into its free
+  // positions; a local merge (buildLocalDrops()) gives the dropped positions back as free ones;
+  // a layout anew (buildWithRoom()) keeps the order and leaves every supernode room. The same
+  // object is reused from call to call (it writes back only its previous windows), as the solver does.
   typedef Eigen::internal::updatable_cholesky::DofRelabeling<StorageIndex> Relabeling;
-  const Index block = Index(1) << Relabeling::BlockBits;
+  typedef Eigen::internal::updatable_cholesky::SupernodalFactor<double, StorageIndex> Factor;
   std::mt19937 g(17);
-  for (Index n : {Index(1), block - 1, block, block + 1, Index(5000)}) {
-    for (Index count : {Index(1), Index(3), Index(8), Index(9), Index(40), Index(300)}) {
-      if (count > n) continue;
-      std::vector<StorageIndex> at;  // distinct, increasing; block edges and the ends included when they fit
-      std::vector<char> taken(n, 0);
-      for (Index c : {Index(0), n - 1, block - 1, block, 2 * block})
-        if (c < n && Index(at.size()) < count && !taken[c]) taken[c] = 1, at.push_back(StorageIndex(c));
-      while (Index(at.size()) < count) {
-        const Index c = Index(g() % std::uint32_t(n));
-        if (!taken[c]) taken[c] = 1, at.push_back(StorageIndex(c));
-      }
-      std::sort(at.begin(), at.end());
-      CAPTURE(n);
-      CAPTURE(count);
-      for (int drops = 0; drops < 2; ++drops) {
-        CAPTURE(drops);
-        Relabeling relabel;
-        relabel.copies.assign(n, 0);
-        if (drops) {
-          relabel.buildForDrops(at);
+  Relabeling reused;
+  for (int trial = 0; trial < 200; ++trial) {
+    CAPTURE(trial);
+    Factor f;
+    const Index ns = 1 + Index(g() % 40);
+    f.nodes.resize(ns);
+    std::vector<Index> freeOf(ns);
+    for (Index s = 0; s < ns; ++s) {
+      f.nodes[s].firstCol = f.n;
+      f.nodes[s].ncols = 1 + Index(g() % 6);
+      freeOf[s] = Index(g() % 4);
+      f.n += f.nodes[s].ncols + freeOf[s];
+      for (Index k = f.nodes[s].firstCol; k < f.n; ++k) f.colToSuper.push_back(StorageIndex(s));
+    }
+    for (Index s = 0; s < ns; ++s) REQUIRE(f.freePositions(s) == freeOf[s]);
+    const int kind = int(g() % 3);  // 0 local insertion, 1 local merge, 2 layout anew
+    CAPTURE(kind);
+    std::vector<StorageIndex> at;
+    std::vector<Index> gained(ns, 0);  // copies (or drops) per supernode
+    Relabeling fresh;
+    fresh.copies.assign(f.n, 0);
+    reused.copies.assign(f.n, 0);
+    for (Index s = 0; s < ns; ++s) {
+      const auto& node = f.nodes[s];
+      for (Index c = 0; c < node.ncols; ++c) {
+        if (g() % 3 != 0) continue;
+        const Index k = node.firstCol + c;
+        if (kind == 1) {  // a supernode keeps one column at least
+          if (gained[s] + 1 >= node.ncols) continue;
+          gained[s] += 1;
         } else {
-          for (StorageIndex c : at) relabel.copies[c] = StorageIndex(1 + g() % 3);
-          relabel.buildForCopies(at);
+          const Index count = 1 + Index(g() % 2);
+          if (kind == 0 && gained[s] + count > freeOf[s]) continue;
+          gained[s] += count;
+          fresh.copies[k] = reused.copies[k] = StorageIndex(count);
         }
-        CHECK(relabel.steps == (count <= Index(Relabeling::MaxSteps) ? count : Index(-1)));
-        std::vector<StorageIndex> kept;  // the kept old columns, in a shuffled order (as a permutation gives them)
-        for (Index k = 0; k < n; ++k)
-          if (relabel.newPosition[k] >= 0) kept.push_back(StorageIndex(k));
-        std::shuffle(kept.begin(), kept.end(), g);
-        std::vector<StorageIndex> out(kept.size());
-        relabel.newPositionsOf(Index(kept.size()), [&](Index i) { return kept[i]; }, out.data());
-        Index wrong = 0;
-        for (std::size_t i = 0; i < kept.size(); ++i) wrong += out[i] != relabel.newPosition[kept[i]];
-        CHECK(wrong == 0);
-        Index lost = 0;  // (and newPosition is the relabeling: old column k lands at its new place)
-        for (Index k = 0; k < n; ++k)
-          lost += relabel.newPosition[k] >= 0 && relabel.oldPosition[relabel.newPosition[k]] != StorageIndex(k);
-        CHECK(lost == 0);
+        at.push_back(StorageIndex(k));
       }
     }
+    auto room = [](Index columns) { return (std::max)(Index(2), columns / 4); };
+    for (Relabeling* r : {&fresh, &reused}) {
+      if (kind == 0) r->buildLocalCopies(at, f);
+      if (kind == 1) r->buildLocalDrops(at, f);
+      if (kind == 2) r->buildWithRoom(at, f, room);
+    }
+    REQUIRE(fresh.newSize == reused.newSize);
+    CHECK(fresh.newPosition == reused.newPosition);
+    CHECK(std::vector<StorageIndex>(reused.oldPosition.begin(), reused.oldPosition.begin() + reused.newSize) ==
+          std::vector<StorageIndex>(fresh.oldPosition.begin(), fresh.oldPosition.begin() + fresh.newSize));
+    const Relabeling& r = reused;
+    CHECK(r.local == (kind != 2));
+    if (kind != 2) CHECK(r.newSize == f.n);
+    std::vector<char> dropped(f.n, 0);
+    if (kind == 1)
+      for (StorageIndex k : at) dropped[k] = 1;
+    // every used position lands in order, inside its supernode's new range, copies right after it
+    Index previous = -1, wrong = 0, outside = 0, notCopies = 0, inverse = 0, moved = 0;
+    std::vector<Index> newFirst(ns), newUsed(ns, 0);
+    for (Index s = 0; s < ns; ++s) {
+      const auto& node = f.nodes[s];
+      newFirst[s] = kind == 2 ? Index(r.newPosition[node.firstCol]) : node.firstCol;  // (a local call keeps it)
+      for (Index k = node.firstCol; k < node.firstCol + node.ncols; ++k) {
+        const Index p = r.newPosition[k];
+        if (dropped[k]) {
+          wrong += p != -1;
+          continue;
+        }
+        wrong += p <= previous;
+        previous = p + r.copies[k];
+        newUsed[s] += 1 + r.copies[k];
+        inverse += r.oldPosition[p] != StorageIndex(k);
+        for (Index t = 1; t <= r.copies[k]; ++t) notCopies += r.oldPosition[p + t] != -1;
+        if (kind != 2) {
+          const bool inWindow = std::any_of(r.windows.begin(), r.windows.end(), [&](const std::pair<StorageIndex, StorageIndex>& w) {
+            return Index(w.first) <= k && k < Index(w.second);
+          });
+          moved += p != k && !inWindow;
+          outside += p < node.firstCol || p + r.copies[k] >= f.ownedEnd(s);
+        }
+      }
+    }
+    CHECK(wrong == 0);
+    CHECK(inverse == 0);
+    CHECK(notCopies == 0);
+    CHECK(moved == 0);
+    CHECK(outside == 0);
+    // the free positions: each supernode's range ends where the next one's begins
+    for (Index s = 0; s < ns; ++s) {
+      CAPTURE(s);
+      const Index end = s + 1 < ns ? newFirst[s + 1] : r.newSize, freeNow = end - newFirst[s] - newUsed[s];
+      if (kind == 0) CHECK(freeNow == freeOf[s] - gained[s]);
+      if (kind == 1) CHECK(freeNow == freeOf[s] + gained[s]);
+      if (kind == 2) CHECK(freeNow == (std::max)(freeOf[s] - gained[s], room(newUsed[s])));
+      // new positions without an old one: the copies or the freed positions, and in a layout
+      // anew the free positions beyond the old ones (the old free positions are kept, in place)
+      Index unnamed = 0;
+      for (Index j = newFirst[s]; j < end; ++j) unnamed += r.oldPosition[j] < 0;
+      CHECK(unnamed == gained[s] + (kind == 2 ? freeNow - (std::min)(freeOf[s], freeNow) : Index(0)));
+    }
+    Index firstMoved = f.n;
+    for (Index k = 0; k < f.n && firstMoved == f.n; ++k)
+      if (r.newPosition[k] != StorageIndex(k)) firstMoved = k;
+    CHECK(r.firstMoved <= firstMoved);
   }
 }
 
@@ -845,6 +910,63 @@ TEST_CASE_TEMPLATE("insertDofs refactors only the dirty part", Cfg, uctest::d_in
   CHECK(llt.lastUpdate().structureSeconds == 0);
   CHECK(llt.lastUpdate().planSeconds == 0);
   CHECK(llt.lastUpdate().numericSeconds == 0);
+}
+
+TEST_CASE_TEMPLATE("a cut whose supernodes have room moves only their columns", Cfg, UC_CORE_CONFIGS) {
+  // The factor keeps free positions after each supernode's columns (SupernodalFactor). The first
+  // cut lays the positions out anew with room; a merge gives its copies' positions back; a cut
+  // of the same seam then fits in its origins' supernodes: it moves only the columns after the
+  // origins there and renumbers only the supernodes below them that hold those columns as rows.
+  // Every step must still be the factor of the current matrix, with the public permutation and
+  // matrixL() free of the gaps, and Dirichlet solves must see the copies where they now are.
+  typedef typename Cfg::FullMatrix FullMatrix;
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  Eigen::gridMesh(40, 40, V, F);
+  const FullMatrix A = Eigen::cotanLaplacian<typename Cfg::Scalar, typename Cfg::StorageIndex>(V, F);
+  SplitGraph<typename Cfg::Scalar> G = graphOf<Cfg>(A);
+  const FullMatrix A0 = G.template matrix<FullMatrix>();
+  typename Cfg::Solver llt;
+  llt.setUpdateCaching(true);
+  llt.compute(toInput<Cfg>(A0));
+  REQUIRE(llt.info() == Eigen::Success);
+  std::mt19937 g(23);
+  const std::vector<int> seam = {300, 301, 302, 303, 304};
+  const std::vector<int> origin = G.split(seam, g);
+  const FullMatrix Acut = G.template matrix<FullMatrix>();
+  const Index n = A0.rows(), ns = llt.supernodeCount();
+  llt.insertDofs(toInput<Cfg>(Acut), origin);  // the first: a layout anew
+  REQUIRE(llt.info() == Eigen::Success);
+  CHECK(llt.lastUpdate().movedPositions > n / 2);
+  checkAgainstFresh<Cfg>(llt, Acut, g);
+  for (int cycle = 0; cycle < 3; ++cycle) {
+    CAPTURE(cycle);
+    llt.mergeDofs(toInput<Cfg>(A0), origin);  // always local
+    REQUIRE(llt.info() == Eigen::Success);
+    CHECK(llt.lastUpdate().movedPositions < n / 20);
+    CHECK(llt.lastUpdate().renumberedSupernodes < ns / 4);
+    checkAgainstFresh<Cfg>(llt, A0, g);
+    llt.insertDofs(toInput<Cfg>(Acut), origin);  // local: the merge left the room
+    REQUIRE(llt.info() == Eigen::Success);
+    CHECK(llt.lastUpdate().movedPositions < n / 20);
+    CHECK(llt.lastUpdate().renumberedSupernodes < ns / 4);
+    checkAgainstFresh<Cfg>(llt, Acut, g);
+    for (std::size_t k = 0; k < seam.size(); ++k)  // (each copy right after its origin)
+      CHECK(llt.permutationP().indices()[Index(n + k)] > llt.permutationP().indices()[origin[n + k]]);
+  }
+  // a Dirichlet solve with a copy and an origin fixed: x_B = g, A_II x_I = b_I - A_IB g
+  const std::vector<int> fixed = {origin[n], int(n), 0};
+  llt.removeDofs(fixed);
+  REQUIRE(llt.info() == Eigen::Success);
+  const typename Cfg::Dense b = randomDense<Cfg>(Acut.rows(), 2, g), known = randomDense<Cfg>(Acut.rows(), 2, g);
+  const typename Cfg::Dense x = llt.solveDirichlet(b, known);
+  typename Cfg::Dense r = Acut.template selfadjointView<Eigen::Lower>() * x - b;
+  for (int i : fixed) {
+    CHECK(x.row(i) == known.row(i));
+    r.row(i).setZero();
+  }
+  CHECK(double(r.norm() / (b.norm() + (Acut.template selfadjointView<Eigen::Lower>() * x).norm())) <=
+        100 * exactTolerance<Cfg>());
 }
 
 TEST_CASE_TEMPLATE("repeated cut/merge cycles reuse their buffers: the same factor, bounded memory", Cfg,

@@ -31,118 +31,108 @@ namespace Eigen {
 namespace internal {
 namespace updatable_cholesky {
 
-/** \internal How the permuted columns move: old permuted column k goes to newPosition[k]
-  * (-1: merged away) and, in dirty supernodes, is followed by copies[k] new rows/columns. */
+/** \internal How the positions move (SupernodalFactor::n counts them: each supernode's columns,
+  * then its free positions). Old position k goes to newPosition[k] (-1: merged away, or a free
+  * position that was used up) and, in dirty supernodes, is followed by copies[k] new rows and
+  * columns. An insertion is local when every origin's supernode has free positions for its
+  * copies (buildLocalCopies()), and a merge always is (buildLocalDrops()): only the columns of
+  * those supernodes after the first origin or merged column move, inside their supernode, and
+  * the number of positions stays. Otherwise an insertion lays every position out anew
+  * (buildWithRoom()), with room for later ones. */
 template <typename StorageIndex>
 struct DofRelabeling {
-  std::vector<StorageIndex> newPosition;  ///< old permuted -> new permuted, or -1
-  std::vector<StorageIndex> copies;       ///< copies placed right after each old permuted column
-  std::vector<StorageIndex> oldPosition;  ///< new permuted -> old permuted, or -1 for a copy
-  Index newSize = 0;
-  Index firstMoved = 0;  ///< old permuted columns below this one keep their position
-  /** newPosition and oldPosition hold k at every k below this (kept by buildForCopies() and
-    * buildForDrops() between their calls, which then write only the rest) */
-  Index identityPrefix = 0;
-  /** When the relabeling has at most MaxSteps steps (old columns that get copies, or that are
-    * dropped): kept old column k moves to k + the stepShift of every step with stepAt < k;
-    * steps < 0 when there are more. */
-  enum { MaxSteps = 8 };
-  enum { LookUp = -2 };  ///< steps of a relabeling built by buildWithRoom(): newPositionsOf() reads newPosition
-  StorageIndex stepAt[MaxSteps], stepShift[MaxSteps];
-  Index steps = -1;
-  /** With more steps: the shift of the old columns of each block of 2^BlockBits (the same for
-    * all of them when no step lies in the block), or MixedBlock when a step does. */
-  enum { BlockBits = 8 };
-  std::vector<StorageIndex> blockShift;
-  static constexpr StorageIndex MixedBlock = NumTraits<StorageIndex>::highest();
-  /** Built by buildForCopies(): the old columns move by runs (forEachCopyRun()). */
-  bool byRuns = false;
+  std::vector<StorageIndex> newPosition;  ///< old position -> new position, or -1
+  std::vector<StorageIndex> copies;       ///< copies placed right after each old position (zero elsewhere)
+  std::vector<StorageIndex> oldPosition;  ///< new position -> old position, or -1 (a copy, a new free position)
+  Index newSize = 0;     ///< the number of new positions
+  Index firstMoved = 0;  ///< old positions below this one keep their place
+  Index moved = 0;       ///< used old positions (columns) that move
+  /** A local relabeling: the positions move only inside the windows, and newSize is the old size. */
+  bool local = false;
+  /** The windows of a local relabeling: [begin, end) is a range of positions, inside one
+    * supernode's, out of which newPosition and oldPosition are the identity. */
+  std::vector<std::pair<StorageIndex, StorageIndex> > windows;
 
-  /** out[i] = the new position of the kept old column oldColumn(i), for i < count, in one pass
-    * in order rather than a load from newPosition at a random place per column (the columns
-    * come in the user's order: that load misses the cache once newPosition outgrows it). With
-    * few steps, by compares (they vectorize); with more, from the shift of the column's block
-    * (a table that stays in cache), newPosition only for the blocks that hold a step. */
-  template <typename OldColumn>
-  void newPositionsOf(Index count, OldColumn&& oldColumn, StorageIndex* EIGEN_RESTRICT out) const {
-    if (steps == LookUp) {  // (a layout laid out anew: read off newPosition)
-      const StorageIndex* to = newPosition.data();
-      for (Index i = 0; i < count; ++i) out[i] = to[oldColumn(i)];
-      return;
-    }
-    if (steps < 0) {
-      const StorageIndex* block = blockShift.data();
-      const StorageIndex* to = newPosition.data();
-      for (Index i = 0; i < count; ++i) {
-        const StorageIndex k = StorageIndex(oldColumn(i)), shift = block[k >> BlockBits];
-        out[i] = shift != MixedBlock ? StorageIndex(k + shift) : to[k];
-      }
-      return;
-    }
-    StorageIndex at[MaxSteps], shift[MaxSteps];  // (unused steps: never passed, add nothing)
-    for (Index q = 0; q < Index(MaxSteps); ++q) {
-      at[q] = q < steps ? stepAt[q] : NumTraits<StorageIndex>::highest();
-      shift[q] = q < steps ? stepShift[q] : StorageIndex(0);
-    }
-    for (Index i = 0; i < count; ++i) {
-      const StorageIndex k = StorageIndex(oldColumn(i));
-      StorageIndex moved = 0;
-      for (Index q = 0; q < Index(MaxSteps); ++q) moved += k > at[q] ? shift[q] : StorageIndex(0);
-      out[i] = k + moved;
-    }
-  }
-
-  /** build() for an insertion: nothing dropped, and copies is non-zero only at (some of) the old
-    * permuted columns \a at (increasing, distinct). The columns up to the first of them keep
-    * their positions; the rest move by the copies before them, which is written run by run (one
-    * run between two origins), in order, without reading copies per column. */
-  void buildForCopies(const std::vector<StorageIndex>& at) {
-    byRuns = true;
+  /** A local insertion: copies (non-zero only at the old positions \a at, increasing, distinct)
+    * go right after their origins; in each supernode that gets some (\a f's, which must have as
+    * many free positions), its columns after its first origin move up by the copies before them,
+    * into its free positions. Writes only the windows (and undoes the previous call's). */
+  template <typename Factor>
+  void buildLocalCopies(const std::vector<StorageIndex>& at, const Factor& f) {
     const Index n = Index(copies.size());
-    Index shift = 0;
-    for (StorageIndex p : at) shift += copies[p];
-    newSize = n + shift;
-    firstMoved = at.empty() ? n : Index(at.front()) + 1;  // (no copies: nothing moves)
-    newPosition.resize(n);
-    oldPosition.resize(newSize);
-    StorageIndex* EIGEN_RESTRICT to = newPosition.data();
-    StorageIndex* EIGEN_RESTRICT from = oldPosition.data();
-    for (Index k = (std::min)(identityPrefix, firstMoved); k < firstMoved; ++k) to[k] = from[k] = StorageIndex(k);
-    recordSteps(at, [&](Index q) { return copies[at[q]]; });
-    forEachCopyRun(at, [&](Index origin, Index count, Index begin, Index end, Index shift) {
-      for (Index t = 1; t <= count; ++t) from[origin + shift - count + t] = StorageIndex(-1);  // its copies
-      for (Index k = begin; k < end; ++k) {
-        to[k] = StorageIndex(k + shift);
-        from[k + shift] = StorageIndex(k);
+    startLocal(n);
+    for (std::size_t q = 0; q < at.size();) {
+      const Index owner = f.colToSuper[at[q]], first = Index(at[q]);
+      const Index usedEnd = f.nodes[owner].firstCol + f.nodes[owner].ncols;
+      Index shift = 0;
+      for (Index k = first; k < usedEnd; ++k) {
+        newPosition[k] = StorageIndex(k + shift);
+        oldPosition[k + shift] = StorageIndex(k);
+        moved += shift > 0;
+        if (q < at.size() && Index(at[q]) == k) {
+          const Index count = copies[k];
+          for (Index t = 1; t <= count; ++t) oldPosition[k + shift + t] = StorageIndex(-1);
+          shift += count;
+          ++q;
+        }
       }
-    });
-    identityPrefix = firstMoved;
+      eigen_assert(shift <= f.freePositions(owner) && "buildLocalCopies: a supernode without room for its copies");
+      for (Index k = usedEnd; k < usedEnd + shift; ++k) newPosition[k] = StorageIndex(-1);  // (free, used up)
+      windows.emplace_back(StorageIndex(first), StorageIndex(usedEnd + shift));
+    }
+    finishLocal(n);
   }
 
-  /** The runs of an insertion's relabeling (copies at the old permuted columns \a at, increasing,
-    * as given to buildForCopies()), in order: run(origin, count, begin, end, shift) for each
-    * origin with its count copies, placed right after it, and the old columns [begin, end) after
-    * it up to the next origin (included), which move by shift (the copies up to this origin's). */
-  /** build() for an insertion that lays the positions of factor \a f out anew (when some origin's
-    * supernode has fewer free positions than the copies it gets, see SupernodalFactor): each
-    * supernode keeps its columns in order, each origin (old positions \a at, increasing,
-    * distinct, copies[] of each) followed by its copies, then its free positions: as many as
-    * it had less the copies it took, and at least roomFor(its new column count). Free old
-    * positions beyond that map to -1; new ones have no old position (-1). */
+  /** A local merge: the old positions \a at (increasing, distinct, used columns) are dropped; in
+    * each supernode that loses some, its columns after them move down by the dropped ones
+    * before them, and as many free positions appear after its columns. */
+  template <typename Factor>
+  void buildLocalDrops(const std::vector<StorageIndex>& at, const Factor& f) {
+    const Index n = Index(copies.size());
+    startLocal(n);
+    for (std::size_t q = 0; q < at.size();) {
+      const Index owner = f.colToSuper[at[q]], first = Index(at[q]);
+      const Index usedEnd = f.nodes[owner].firstCol + f.nodes[owner].ncols;
+      Index shift = 0;
+      for (Index k = first; k < usedEnd; ++k) {
+        if (q < at.size() && Index(at[q]) == k) {
+          newPosition[k] = StorageIndex(-1);
+          ++shift;
+          ++q;
+          continue;
+        }
+        newPosition[k] = StorageIndex(k - shift);
+        oldPosition[k - shift] = StorageIndex(k);
+        moved += shift > 0;
+      }
+      for (Index k = usedEnd - shift; k < usedEnd; ++k) oldPosition[k] = StorageIndex(-1);  // (free now)
+      windows.emplace_back(StorageIndex(first), StorageIndex(usedEnd));
+    }
+    finishLocal(n);
+  }
+
+  /** An insertion that lays the positions of factor \a f out anew (when some origin's supernode
+    * has fewer free positions than the copies it gets): each supernode keeps its columns in
+    * order, each origin (old positions \a at, increasing, distinct) followed by its copies, then
+    * its free positions: as many as it had less the copies it took, and at least
+    * roomFor(its new column count). Free old positions beyond that map to -1; new ones have no
+    * old position (-1). */
   template <typename Factor, typename Room>
   void buildWithRoom(const std::vector<StorageIndex>& at, const Factor& f, Room&& roomFor) {
-    byRuns = false;
-    steps = LookUp;
+    local = false;
+    windows.clear();
     const Index n = Index(copies.size()), ns = f.count();
     newPosition.resize(n);
     StorageIndex* EIGEN_RESTRICT to = newPosition.data();
     Index shift = 0;
     std::size_t q = 0;
+    moved = 0;
     for (Index s = 0; s < ns; ++s) {
       const Index first = f.nodes[s].firstCol, used = f.nodes[s].ncols, end = f.ownedEnd(s);
       Index inside = 0;  // the copies placed so far in s
       for (Index k = first; k < first + used; ++k) {
         to[k] = StorageIndex(k + shift + inside);
+        moved += shift + inside > 0;
         if (q < at.size() && Index(at[q]) == k) inside += copies[at[q++]];
       }
       const Index free = end - first - used, room = (std::max)(free - inside, Index(roomFor(used + inside)));
@@ -153,73 +143,30 @@ struct DofRelabeling {
     oldPosition.assign(newSize, StorageIndex(-1));
     firstMoved = n;
     for (Index k = n - 1; k >= 0; --k) {
-      if (to[k] < 0) {
-        firstMoved = k;
-        continue;
-      }
-      oldPosition[to[k]] = StorageIndex(k);
+      if (to[k] >= 0) oldPosition[to[k]] = StorageIndex(k);
       if (to[k] != k) firstMoved = k;
     }
-    identityPrefix = firstMoved;
-  }
-
-  template <typename Run>
-  void forEachCopyRun(const std::vector<StorageIndex>& at, Run&& run) const {
-    const Index n = Index(copies.size());
-    Index shift = 0;
-    for (std::size_t q = 0; q < at.size(); ++q) {
-      const Index origin = Index(at[q]), count = Index(copies[origin]);
-      shift += count;
-      run(origin, count, origin + 1, q + 1 < at.size() ? Index(at[q + 1]) + 1 : n, shift);
-    }
-  }
-
-  /** build() for a merge: the old permuted columns \a at (increasing, distinct) are dropped and
-    * no column gets copies. The columns up to the first of them keep their positions; the rest
-    * move down by the dropped ones before them, written run by run (one run between two dropped
-    * columns), in order. */
-  void buildForDrops(const std::vector<StorageIndex>& at) {
-    byRuns = false;
-    const Index n = Index(copies.size());
-    newSize = n - Index(at.size());
-    firstMoved = at.empty() ? n : Index(at.front());
-    newPosition.resize(n);
-    oldPosition.resize(newSize);
-    StorageIndex* EIGEN_RESTRICT to = newPosition.data();
-    StorageIndex* EIGEN_RESTRICT from = oldPosition.data();
-    for (Index k = (std::min)(identityPrefix, firstMoved); k < firstMoved; ++k) to[k] = from[k] = StorageIndex(k);
-    recordSteps(at, [](Index) { return -1; });
-    for (std::size_t q = 0; q < at.size(); ++q) {
-      const Index dropped = Index(at[q]), shift = Index(q) + 1;
-      to[dropped] = StorageIndex(-1);
-      const Index end = q + 1 < at.size() ? Index(at[q + 1]) : n;
-      for (Index k = dropped + 1; k < end; ++k) {
-        to[k] = StorageIndex(k - shift);
-        from[k - shift] = StorageIndex(k);
-      }
-    }
-    identityPrefix = firstMoved;
   }
 
  private:
-  template <typename Shift>
-  void recordSteps(const std::vector<StorageIndex>& at, Shift&& shiftOf) {
-    steps = Index(at.size()) <= Index(MaxSteps) ? Index(at.size()) : Index(-1);
-    for (Index q = 0; q < steps; ++q) {
-      stepAt[q] = at[q];
-      stepShift[q] = StorageIndex(shiftOf(q));
+  /** Makes newPosition and oldPosition the identity on \a n positions (after a local call, only
+    * its windows are written back). */
+  void startLocal(Index n) {
+    if (local && Index(newPosition.size()) == n && Index(oldPosition.size()) == n) {
+      for (const auto& w : windows)
+        for (Index k = w.first; k < w.second; ++k) newPosition[k] = oldPosition[k] = StorageIndex(k);
+    } else {
+      newPosition.resize(n);
+      oldPosition.resize(n);
+      for (Index k = 0; k < n; ++k) newPosition[k] = oldPosition[k] = StorageIndex(k);
     }
-    if (steps >= 0) return;
-    // the block table: a column moves by the shifts of the steps below it, the same for a whole
-    // block when no step lies in it
-    const Index n = Index(copies.size()), blocks = (n >> BlockBits) + 1, count = Index(at.size());
-    blockShift.resize(blocks);
-    StorageIndex shift = 0;
-    for (Index b = 0, q = 0; b < blocks; ++b) {
-      const Index begin = b << BlockBits, end = begin + (Index(1) << BlockBits);
-      for (; q < count && Index(at[q]) < begin; ++q) shift += StorageIndex(shiftOf(q));
-      blockShift[b] = q < count && Index(at[q]) < end ? MixedBlock : shift;
-    }
+    windows.clear();
+    local = true;
+    moved = 0;
+  }
+  void finishLocal(Index n) {
+    newSize = n;
+    firstMoved = windows.empty() ? n : Index(windows.front().first);
   }
 };
 
@@ -286,7 +233,17 @@ struct SparePool {
 template <typename Scalar, typename StorageIndex>
 struct FactorStructureBackup {
   Index n = 0;
+  /** The relabeling was local: colToSuper (left empty) is the factor's, which it kept. */
+  bool local = false;
   std::vector<StorageIndex> colToSuper;
+  /** A local relabeling's clean supernodes, renumbered (cleanHoldersOfWindows()). */
+  std::vector<Index> renumbered;
+  Index renumberedCount = 0;  ///< clean supernodes renumbered, by either relabeling
+  std::vector<char> flag;  ///< scratch by supernode, zero between calls
+  /** The supernode of each previous position. */
+  const std::vector<StorageIndex>& previousColToSuper(const SupernodalFactor<Scalar, StorageIndex>& f) const {
+    return local ? f.colToSuper : colToSuper;
+  }
   std::vector<Index> firstCol, ncols;
   std::vector<std::vector<StorageIndex> > rows, parentPosition;  ///< dirty supernodes only
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > values;          ///< dirty supernodes only
@@ -372,19 +329,67 @@ struct FactorStructureBackup {
   }
 };
 
+/** \internal The clean supernodes (mark == 0) that hold a position of a window of the local
+  * relabeling \a relabel as a row, appended to \a out once each (\a flag: scratch by supernode,
+  * zero between uses). A window lies in its owner's columns; a supernode holding one of them as a
+  * row lies below the owner, and so do all between them (a row passes from child to parent): they
+  * are found from the owner's children down, a child that holds none ending the search. */
+template <typename Scalar, typename StorageIndex>
+void cleanHoldersOfWindows(const SupernodalFactor<Scalar, StorageIndex>& f, const DofRelabeling<StorageIndex>& relabel,
+                           const std::vector<char>& mark, std::vector<char>& flag, std::vector<Index>& out) {
+  std::vector<Index> below;
+  flag.resize(f.count(), 0);
+  for (const auto& w : relabel.windows) {
+    const Index owner = f.colToSuper[w.first];
+    for (Index c = f.firstChild[owner]; c != -1; c = f.nextSibling[c]) below.push_back(c);
+    while (!below.empty()) {
+      const Index c = below.back();
+      below.pop_back();
+      const auto& node = f.nodes[c];
+      const auto it = std::lower_bound(node.rows.begin() + node.ncols, node.rows.end(), w.first);
+      if (it == node.rows.end() || *it >= w.second) continue;
+      if (!mark[c] && !flag[c]) {
+        flag[c] = 1;
+        out.push_back(c);
+      }
+      for (Index g = f.firstChild[c]; g != -1; g = f.nextSibling[g]) below.push_back(g);
+    }
+  }
+  for (Index c : out) flag[c] = 0;
+}
+
 /** \internal Applies \a relabel to the factor: dirty supernodes (mark != 0) get new row lists
   * (merged rows dropped, copies inserted after their origins) and lose their values and cached
-  * update matrix (moved into \a backup, to be recomputed); clean ones are renumbered in place.
-  * Recomputes first columns, column counts, colToSuper and the relative positions of the
-  * children of dirty supernodes. The assembly maps stay as they are (see remapAssemblyMaps()).
-  * \a position: scratch by new permuted row, all -1 between uses. */
+  * update matrix (moved into \a backup, to be recomputed); clean ones are renumbered in place
+  * (after a local relabeling, only those that hold a moved position, backup.renumbered).
+  * Recomputes first columns, column counts, colToSuper (unchanged by a local relabeling: the
+  * positions keep their owners) and the relative positions of the children of dirty
+  * supernodes. The assembly maps stay as they are (see remapAssemblyMaps()).
+  * \a position: scratch by new position, all -1 between uses. */
 template <typename Scalar, typename StorageIndex>
 void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<UpdateBuffer<Scalar> >& cache,
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
                    FactorStructureBackup<Scalar, StorageIndex>& backup, std::vector<StorageIndex>& position) {
   const Index ns = f.count();
   backup.n = f.n;
-  backup.colToSuper.swap(f.colToSuper);
+  backup.local = relabel.local;
+  backup.renumbered.clear();
+  backup.renumberedCount = 0;
+  if (relabel.local) {  // (the clean supernodes renumbered: found before the dirty ones' rows change)
+    cleanHoldersOfWindows(f, relabel, mark, backup.flag, backup.renumbered);
+    const Index from = relabel.firstMoved;
+    for (Index s : backup.renumbered) {
+      auto& node = f.nodes[s];
+      StorageIndex* EIGEN_RESTRICT rows = node.rows.data();
+      const StorageIndex* EIGEN_RESTRICT to = relabel.newPosition.data();
+      const Index nr = node.nrows();
+      for (Index k = Index(std::lower_bound(rows, rows + nr, StorageIndex(from)) - rows); k < nr; ++k) rows[k] = to[rows[k]];
+      f.noteLastRow(s);
+    }
+    backup.renumberedCount = Index(backup.renumbered.size());
+  } else {
+    backup.colToSuper.swap(f.colToSuper);
+  }
   backup.firstCol.resize(ns);
   backup.ncols.resize(ns);
   backup.rows.resize(ns);  // (all empty, some with storage: the previous call released them)
@@ -394,9 +399,11 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
   backup.pending.resize(ns);
   for (Index s = 0; s < ns; ++s) {
     // a clean supernode wholly below the first moved column stays as it is, unread (backup.firstCol
-    // and backup.ncols are written for the dirty supernodes only)
-    if (!mark[s] && Index(f.lastRow[s]) < relabel.firstMoved) continue;
+    // and backup.ncols are written for the dirty supernodes only); after a local relabeling, so
+    // does every one but those renumbered above
+    if (!mark[s] && (relabel.local || Index(f.lastRow[s]) < relabel.firstMoved)) continue;
     auto& node = f.nodes[s];
+    backup.renumberedCount += !mark[s];
     if (!mark[s]) {  // (rows are increasing: those before the first moved column stay)
       const Index nr = node.nrows();
       StorageIndex* EIGEN_RESTRICT rows = node.rows.data();
@@ -429,14 +436,16 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
     f.noteLastRow(s);
   }
   f.n = relabel.newSize;
-  f.colToSuper.resize(f.n);  // one pass in order: a copy belongs to the supernode of its origin
-  const Index unmoved = (std::min)(relabel.firstMoved, f.n);  // (the columns below keep their supernode)
-  std::copy(backup.colToSuper.begin(), backup.colToSuper.begin() + unmoved, f.colToSuper.begin());
-  StorageIndex owner = unmoved > 0 ? f.colToSuper[unmoved - 1] : StorageIndex(-1);
-  for (Index j = unmoved; j < f.n; ++j) {
-    const StorageIndex k = relabel.oldPosition[j];
-    if (k >= 0) owner = backup.colToSuper[k];
-    f.colToSuper[j] = owner;
+  if (!relabel.local) {
+    f.colToSuper.resize(f.n);  // one pass in order: a copy or a free position belongs to the supernode before it
+    const Index unmoved = (std::min)(relabel.firstMoved, f.n);  // (the columns below keep their supernode)
+    std::copy(backup.colToSuper.begin(), backup.colToSuper.begin() + unmoved, f.colToSuper.begin());
+    StorageIndex owner = unmoved > 0 ? f.colToSuper[unmoved - 1] : StorageIndex(-1);
+    for (Index j = unmoved; j < f.n; ++j) {
+      const StorageIndex k = relabel.oldPosition[j];
+      if (k >= 0) owner = backup.colToSuper[k];
+      f.colToSuper[j] = owner;
+    }
   }
   // relative positions of the children of dirty supernodes (the parents' rows changed)
   position.resize(f.n, StorageIndex(-1));
@@ -461,8 +470,13 @@ void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
                    FactorStructureBackup<Scalar, StorageIndex>& backup) {
   const Index ns = f.count();
+  for (Index s : backup.renumbered) {  // (a local relabeling's clean supernodes)
+    for (auto& r : f.nodes[s].rows) r = relabel.oldPosition[r];
+    f.noteLastRow(s);
+  }
   for (Index s = 0; s < ns; ++s) {
-    if (!mark[s] && Index(f.lastRow[s]) < relabel.firstMoved) continue;  // (relabelFactor() left it as it was)
+    // (relabelFactor() left it as it was)
+    if (!mark[s] && (backup.local || Index(f.lastRow[s]) < relabel.firstMoved)) continue;
     auto& node = f.nodes[s];
     if (!mark[s]) {
       for (auto& r : node.rows) r = relabel.oldPosition[r];
@@ -481,7 +495,7 @@ void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
     for (Index c = f.firstChild[p]; c != -1; c = f.nextSibling[c]) f.nodes[c].parentPosition.swap(backup.parentPosition[c]);
   }
   f.n = backup.n;
-  f.colToSuper.swap(backup.colToSuper);
+  if (!backup.local) f.colToSuper.swap(backup.colToSuper);
 }
 
 /** \internal True when permuted row \a row lies in the rows of the supernode of permuted column

@@ -52,6 +52,13 @@ struct UpdateStatistics {
   double planSeconds = 0;       ///< choosing which dirty supernodes are refactored and which are folded
   double numericSeconds = 0;    ///< refactorizations and folds
   /** @} */
+  /** insertDofs()/mergeDofs(): columns of L whose position in the factor's numbering moved. When
+    * the origins' supernodes have free positions for the copies (and always for a merge), only
+    * the columns after the origins (merged dofs) inside those supernodes; else the layout is
+    * made anew, with room for later cuts, and most columns move. */
+  Index movedPositions = 0;
+  /** insertDofs()/mergeDofs(): supernodes not recomputed whose row indices were renumbered. */
+  Index renumberedSupernodes = 0;
 };
 
 namespace internal {

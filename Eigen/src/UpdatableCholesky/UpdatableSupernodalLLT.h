@@ -1340,11 +1340,31 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildInsertionLayout
   for (StorageIndex o : change.touched) at.push_back(perm[o]);
   std::sort(at.begin(), at.end());
   at.erase(std::unique(at.begin(), at.end()), at.end());
-  relabel.buildWithRoom(at, m_factor, [](Index columns) { return (std::max)(Index(2), columns / 4); });
-  // each copy right after its origin, copies of one origin in increasing order
+  // local when every origin's supernode has free positions for its copies (paper §4.2: a copy
+  // joins its origin's supernode); else every position is laid out anew, with room
+  bool room = true;
+  for (std::size_t q = 0; q < at.size() && room;) {
+    const Index owner = m_factor.colToSuper[at[q]];
+    Index copies = 0;
+    for (; q < at.size() && m_factor.colToSuper[at[q]] == owner; ++q) copies += relabel.copies[at[q]];
+    room = copies <= m_factor.freePositions(owner);
+  }
   change.newPerm.resize(total);
+  StorageIndex* newPerm = change.newPerm.data();
+  if (room) {  // the old dofs keep their positions but in the windows
+    relabel.buildLocalCopies(at, m_factor);
+    std::copy(perm, perm + n, newPerm);
+    const StorageIndex* dofAt = m_Pinv.indices().data();
+    for (const auto& w : relabel.windows)
+      for (Index k = w.first; k < w.second; ++k)
+        if (relabel.newPosition[k] >= 0) newPerm[dofAt[k]] = relabel.newPosition[k];
+  } else {
+    relabel.buildWithRoom(at, m_factor, [](Index columns) { return (std::max)(Index(2), columns / 4); });
+    const StorageIndex* to = relabel.newPosition.data();
+    for (Index i = 0; i < n; ++i) newPerm[i] = to[perm[i]];
+  }
+  // each copy right after its origin, copies of one origin in increasing order
   change.placed.resize(m_factor.n, 0);  // (by position; zero between calls)
-  relabel.newPositionsOf(n, [perm](Index i) { return perm[i]; }, change.newPerm.data());  // (the old dofs)
   for (Index i = n; i < total; ++i) {
     const StorageIndex po = perm[change.preList[i]];
     change.newPerm[i] = StorageIndex(relabel.newPosition[po] + 1 + change.placed[po]++);
@@ -1446,11 +1466,17 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   const auto layoutStart = std::chrono::steady_clock::now();
   auto& relabel = change.relabel;
   relabel.copies.resize(m_factor.n, 0);  // (by position; a merge makes no copies: zero, always)
-  relabel.buildForDrops(change.droppedAt);
-  // the new permutation: each kept dof's column moves down by the dropped columns before it
+  relabel.buildLocalDrops(change.droppedAt, m_factor);
+  // the new permutation: in the windows, each kept dof's column moves down by the dropped
+  // columns before it; the other dofs keep their positions
   change.newPerm.resize(total);
   const StorageIndex* oldOfNew = change.oldOfNew.data();
-  relabel.newPositionsOf(total, [perm, oldOfNew](Index x) { return perm[oldOfNew[x]]; }, change.newPerm.data());
+  StorageIndex* newPerm = change.newPerm.data();
+  for (Index x = 0; x < total; ++x) newPerm[x] = perm[oldOfNew[x]];
+  const StorageIndex* dofAt = m_Pinv.indices().data();
+  for (const auto& w : relabel.windows)
+    for (Index k = w.first; k < w.second; ++k)
+      if (relabel.newPosition[k] >= 0) newPerm[change.newOfOld[dofAt[k]]] = relabel.newPosition[k];
   change.layoutReady = true;
   change.layoutSeconds = secondsBetween(layoutStart);
   if (!change.compareAll) collectCompared(change, total);
@@ -1517,7 +1543,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges
   // merged dofs' rows and columns still there, previous numbering)
   const bool previousStructure = change.merging;
   const StorageIndex* perm = previousStructure ? change.newPerm.data() : m_P.indices().data();
-  const std::vector<StorageIndex>& colToSuper = previousStructure ? m_structureBackup.colToSuper : m_factor.colToSuper;
+  const std::vector<StorageIndex>& colToSuper =
+      previousStructure ? m_structureBackup.previousColToSuper(m_factor) : m_factor.colToSuper;
   const char* removed = previousStructure ? nullptr : m_removedPermuted.data();  // (a merge folds only without removed dofs)
   typedef InputChangeEntry<Scalar, StorageIndex> Entry;
   std::vector<Entry> entries;
@@ -1742,12 +1769,14 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       return o < 0 || !change.merging || o < change.firstMerged ? o : change.newOfOld[o];
     };
     const Index unmoved = (std::min)(change.relabel.firstMoved, change.relabel.newSize);  // (below it, no column moves)
-    if (!change.merging && change.relabel.byRuns) {  // an insertion: the old columns move by runs (one between two origins), copied as such
+    if (!change.merging && change.relabel.local) {  // a local insertion: the positions move only in the windows
       StorageIndex* newPinv = change.newPinv.data();
-      std::copy(oldPinv, oldPinv + unmoved, newPinv);
-      change.relabel.forEachCopyRun(change.originsAt, [&](Index, Index, Index begin, Index end, Index shift) {
-        std::copy(oldPinv + begin, oldPinv + end, newPinv + begin + shift);
-      });
+      std::copy(oldPinv, oldPinv + change.relabel.newSize, newPinv);
+      for (const auto& w : change.relabel.windows)
+        for (Index j = w.first; j < w.second; ++j) {
+          const StorageIndex k = change.relabel.oldPosition[j];
+          newPinv[j] = k < 0 ? StorageIndex(-1) : oldPinv[k];
+        }
     } else {
       for (Index j = 0; j < unmoved; ++j) change.newPinv[j] = newDof(oldPinv[j]);
       for (Index j = unmoved; j < change.relabel.newSize; ++j) {
@@ -1843,7 +1872,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
           if (change.newOfOld[o] >= 0) {
             ownNew(change.newOfOld[o]);
           } else {  // a merged dof: its previous column (its supernode's numbering is kept)
-            const Index j = change.newPerm[o], t = backup.colToSuper[j];
+            const Index j = change.newPerm[o], t = backup.previousColToSuper(m_factor)[j];
             own(t, j - backup.firstCol[t]);
           }
         }
@@ -1984,6 +2013,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   m_lastUpdate.structureSeconds = secondsBetween(compared, relabeled) + layout;
   m_lastUpdate.planSeconds = secondsBetween(relabeled, planned);
   m_lastUpdate.numericSeconds = secondsBetween(planned, computed);
+  m_lastUpdate.movedPositions = change.relabel.moved;
+  m_lastUpdate.renumberedSupernodes = backup.renumberedCount;
 }
 
 template <typename MatrixType_, int UpLo_, typename Ordering_>
