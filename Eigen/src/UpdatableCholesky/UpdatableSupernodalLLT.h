@@ -139,13 +139,11 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   /** \returns the permutation P such that the factor is that of \f$ P A P^{-1} \f$ (after
     * insertDofs() or mergeDofs(), built on first call after each of them). */
   const PermutationType& permutationP() const {
-    if (!hasFreePositions()) return m_P;
     buildPublicPermutation();
     return m_publicP;
   }
   /** \returns the inverse of permutationP(). */
   const PermutationType& permutationPinv() const {
-    if (!hasFreePositions()) return m_Pinv;
     buildPublicPermutation();
     return m_publicPinv;
   }
@@ -369,7 +367,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     const Ref<const Matrix<Scalar, Dynamic, Dynamic> > from(b.derived());
     const Index positions = m_factor.n;  // (zeros at the free positions, which no row names)
     Matrix<Scalar, Dynamic, Dynamic> x(positions, from.cols());
-    const StorageIndex* inverse = m_Pinv.indices().data();
+    const StorageIndex* inverse = m_Pinv.data();
     const bool gaps = hasFreePositions();
     for (Index c = 0; c < from.cols(); ++c) {
       const Scalar* bc = from.col(c).data();
@@ -386,7 +384,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   template <typename Dest>
   void unpermuteInto(const Matrix<Scalar, Dynamic, Dynamic>& x, MatrixBase<Dest>& dest) const {
     dest.derived().resize(m_n, x.cols());
-    const StorageIndex* perm = m_P.indices().data();
+    const StorageIndex* perm = m_P.data();
     for (Index c = 0; c < x.cols(); ++c) {
       const Scalar* xc = x.col(c).data();
       for (Index i = 0; i < m_n; ++i) dest.coeffRef(i, c) = xc[perm[i]];
@@ -439,7 +437,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
   /** True when the factor's numbering has free positions (after insertDofs() or mergeDofs()):
     * m_factor.n > m_n, and m_P is not a permutation of 0..n-1. */
   bool hasFreePositions() const { return m_analysisIsOk && m_factor.n != m_n; }
-  /** Builds m_publicP, m_publicPinv and m_compressedIndex from m_P and m_Pinv (once per structure). */
+  /** Builds m_publicP, m_publicPinv and m_compressedIndex from m_P and m_Pinv (once per structure;
+    * m_compressedIndex only with free positions). */
   void buildPublicPermutation() const;
 
   typedef internal::updatable_cholesky::SupernodalFactor<Scalar, StorageIndex> Factor;
@@ -450,9 +449,9 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     * factor), m_Pinv maps each of the m_factor.n positions to its dof, or -1 at a free position
     * (room kept after a supernode's columns for the copies of later insertions, paper §4.2).
     * Without free positions both are the permutation and its inverse. */
-  PermutationType m_P, m_Pinv;
-  /** permutationP() and its inverse when there are free positions: m_P with them squeezed out
-    * (built lazily), and the map from position to that contiguous numbering. */
+  std::vector<StorageIndex> m_P, m_Pinv;
+  /** permutationP() and its inverse: m_P with the free positions squeezed out (built lazily), and
+    * the map from position to that contiguous numbering. */
   mutable PermutationType m_publicP, m_publicPinv;
   mutable std::vector<StorageIndex> m_compressedIndex;
   mutable bool m_publicPermutationIsValid;
@@ -518,8 +517,22 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     std::vector<StorageIndex> preStart, preList;  ///< per new dof, the current dofs it stands for
     /** the four arrays above hold i at every i below this (an insertion rewrites only the rest) */
     Index identityLength = 0;
-    typename PermutationType::IndicesType newPerm;  ///< new dof -> new permuted position (then the previous one)
-    typename PermutationType::IndicesType newPinv;  ///< its inverse (then the previous one)
+    std::vector<StorageIndex> newPerm;  ///< new dof -> new position (then the previous one); not for a local insertion
+    std::vector<StorageIndex> newPinv;  ///< its inverse (then the previous one); not for a local insertion
+    /** A local insertion (relabel.local): m_P and m_Pinv are changed in place. copyPositions holds
+      * the new dofs' positions (the old dofs': relabel.newPosition of their current one, see
+      * newPositionOf()); the previous values of what changes are kept for a revert. */
+    std::vector<StorageIndex> copyPositions;
+    std::vector<std::pair<StorageIndex, StorageIndex> > movedDofs;  ///< (dof, previous position)
+    std::vector<StorageIndex> previousDofAt;  ///< m_Pinv over the windows, in their order
+    /** m_P and m_Pinv are changed in place (a local insertion) rather than swapped with newPerm and newPinv. */
+    bool inPlace() const { return !merging && relabel.local; }
+    /** The new position of new dof \a x, before the new permutation is in place (\a perm: the current one). */
+    StorageIndex newPositionOf(Index x, const StorageIndex* perm) const {
+      const Index n = Index(newOfOld.size());
+      if (!inPlace()) return newPerm[x];
+      return x >= n ? copyPositions[x - n] : relabel.newPosition[perm[x]];
+    }
     std::vector<StorageIndex> touched;    ///< current dofs dirty in any case (origins, merged)
     std::vector<StorageIndex> placed;     ///< insertion: copies placed per old permuted column, 0 between calls
     std::vector<StorageIndex> originsAt;  ///< insertion: the origins' old permuted columns, increasing, once each
@@ -548,7 +561,8 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
                     touched.capacity() + placed.capacity() + originsAt.capacity() + previousRemoved.capacity() +
                     merged.capacity() + mergedTarget.capacity() + droppedAt.capacity() +
                     relabel.newPosition.capacity() +
-                    relabel.copies.capacity() + relabel.oldPosition.capacity() + newPerm.size() + newPinv.size()) *
+                    relabel.copies.capacity() + relabel.oldPosition.capacity() + newPerm.capacity() + newPinv.capacity() +
+                    copyPositions.capacity() + 2 * movedDofs.capacity() + previousDofAt.capacity()) *
                    sizeof(StorageIndex));
     }
   };
@@ -739,9 +753,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   buildAssemblyMaps(lower, m_factor);
   m_numeric.reset();
 
-  m_P.resize(n);
-  for (Index i = 0; i < n; ++i) m_P.indices()[i] = perm[i];
-  m_Pinv = m_P.inverse();
+  m_P.assign(perm.begin(), perm.end());
+  m_Pinv.resize(n);
+  for (Index i = 0; i < n; ++i) m_Pinv[m_P[i]] = StorageIndex(i);
   m_removedPermuted.assign(n, 0);
   m_removedOriginal.assign(n, 0);
   m_workspace.resize(m_factor.count());
@@ -776,7 +790,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::factorize(const Matr
   const Index bad = m_numeric.factorize(m_factor, numericInput(), threadCount());
   if (bad >= 0) {
     m_info = NumericalIssue;
-    m_failedColumn = m_Pinv.indices()[bad];
+    m_failedColumn = m_Pinv[bad];
     return;
   }
   m_info = Success;
@@ -814,11 +828,19 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildSparseL() const
 template <typename MatrixType_, int UpLo_, typename Ordering_>
 void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildPublicPermutation() const {
   if (m_publicPermutationIsValid) return;
-  const Index positions = m_factor.n;
-  const StorageIndex* dofAt = m_Pinv.indices().data();
-  m_compressedIndex.assign(positions, StorageIndex(-1));
+  const Index positions = Index(m_Pinv.size());
+  const StorageIndex* dofAt = m_Pinv.data();
+  if (!hasFreePositions()) {  // (m_P is the permutation; after a failed analysis, the previous one)
+    m_publicP.resize(Index(m_P.size()));
+    m_publicPinv.resize(Index(m_Pinv.size()));
+    std::copy(m_P.begin(), m_P.end(), m_publicP.indices().data());
+    std::copy(m_Pinv.begin(), m_Pinv.end(), m_publicPinv.indices().data());
+    m_publicPermutationIsValid = true;
+    return;
+  }
   m_publicP.resize(m_n);
   m_publicPinv.resize(m_n);
+  m_compressedIndex.assign(positions, StorageIndex(-1));
   for (Index p = 0, k = 0; p < positions; ++p) {  // (the positions' order is the elimination order)
     if (dofAt[p] < 0) continue;
     m_compressedIndex[p] = StorageIndex(k);
@@ -849,8 +871,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   using namespace internal::updatable_cholesky;
   const auto start = m_updateStart;
   m_sparseLIsValid = false;
-  std::vector<Index> dirty = dirtySupernodes(m_factor, m_store, m_transposed, m_P.indices().data(),
-                                             m_Pinv.indices().data(), permutedColumns, m_workspace);
+  std::vector<Index> dirty = dirtySupernodes(m_factor, m_store, m_transposed, m_P.data(),
+                                             m_Pinv.data(), permutedColumns, m_workspace);
   const char* removedFlags = m_removedList.empty() ? nullptr : m_removedPermuted.data();
   const double totalFlops = refactorizationFlops(m_factor, m_totalFlops, removedFlags, Index(m_removedList.size()));
   const double dirtyFlops = supernodeFlops(m_factor, dirty, removedFlags);
@@ -891,7 +913,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
     const Index bad = m_numeric.refactorize(m_factor, numericInput(), topPart, threadCount());
     m_info = Success;
     if (bad >= 0) {  // (not expected for a removal, e.g. NaN) the previous matrix and a full factorization
-      m_failedColumn = m_Pinv.indices()[bad];
+      m_failedColumn = m_Pinv[bad];
       revert();
       m_factorizationIsOk = m_numeric.factorize(m_factor, numericInput(), threadCount()) < 0;
       m_solveCache.invalidate();
@@ -911,7 +933,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::applyUpdate(
   };
   const Index bad = run();
   if (bad >= 0) {  // not positive definite: put the previous matrix back and its factor with it
-    m_failedColumn = m_Pinv.indices()[bad];
+    m_failedColumn = m_Pinv[bad];
     revert();
     const Index again = run();
     eigen_assert(again < 0 && "UpdatableSupernodalLLT: the previous factor could not be restored");
@@ -933,8 +955,8 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreByFolds(
   typedef InputChangeEntry<Scalar, StorageIndex> Entry;
   UpdateWorkspace<Scalar>& ws = m_workspace;
   const Index ns = m_factor.count();
-  const StorageIndex* perm = m_P.indices().data();
-  const StorageIndex* pinv = m_Pinv.indices().data();
+  const StorageIndex* perm = m_P.data();
+  const StorageIndex* pinv = m_Pinv.data();
   const char* removed = m_removedList.empty() ? nullptr : m_removedPermuted.data();  // (without the restored dofs)
   const bool force = m_route == UpdateRoute::Mixed || m_route == UpdateRoute::LowRank;
   constexpr bool rowMajor = bool(MatrixType::IsRowMajor);
@@ -1101,7 +1123,7 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::restoreByFolds(
     bad = m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
   }
   if (bad >= 0) {  // not positive definite: the dofs removed again and their supernodes recomputed
-    m_failedColumn = m_Pinv.indices()[bad];
+    m_failedColumn = m_Pinv[bad];
     revert();
     for (Index s : dirty) m_numeric.discardCorrections(s);
     const Index again = m_numeric.refactorize(m_factor, numericInput(), dirty, threadCount());
@@ -1152,7 +1174,7 @@ bool UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::checkDofs(const Indi
     return false;
   }
   permuted.resize(list.size());
-  for (Index k = 0; k < Index(list.size()); ++k) permuted[k] = m_P.indices()[list[k]];
+  for (Index k = 0; k < Index(list.size()); ++k) permuted[k] = m_P[list[k]];
   return true;
 }
 
@@ -1161,7 +1183,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::setRemovedFlags(cons
                                                                             char flag) {
   for (StorageIndex i : list) {
     m_removedOriginal[i] = flag;
-    m_removedPermuted[m_P.indices()[i]] = flag;
+    m_removedPermuted[m_P[i]] = flag;
   }
 }
 
@@ -1245,7 +1267,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceWithCopies(co
   for (Index i = (std::min)(change.identityLength, n); i < n; ++i)
     change.oldOfNew[i] = change.newOfOld[i] = change.preStart[i] = change.preList[i] = StorageIndex(i);
   change.identityLength = n;
-  const StorageIndex* perm = m_P.indices().data();
+  const StorageIndex* perm = m_P.data();
   auto& relabel = change.relabel;
   relabel.copies.resize(m_factor.n, 0);  // (by position; zero between calls)
   for (Index i = n; i < total; ++i) {
@@ -1333,7 +1355,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::collectCompared(DofC
 template <typename MatrixType_, int UpLo_, typename Ordering_>
 void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildInsertionLayout(DofChange& change) {
   const Index n = m_n, total = Index(change.oldOfNew.size());
-  const StorageIndex* perm = m_P.indices().data();
+  const StorageIndex* perm = m_P.data();
   auto& relabel = change.relabel;
   std::vector<StorageIndex>& at = change.originsAt;  // the origins' permuted columns, increasing, once each
   at.clear();
@@ -1349,26 +1371,22 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildInsertionLayout
     for (; q < at.size() && m_factor.colToSuper[at[q]] == owner; ++q) copies += relabel.copies[at[q]];
     room = copies <= m_factor.freePositions(owner);
   }
-  change.newPerm.resize(total);
-  StorageIndex* newPerm = change.newPerm.data();
-  if (room) {  // the old dofs keep their positions but in the windows
+  if (room) {  // the old dofs keep their positions but in the windows (m_P changed in place, later)
     relabel.buildLocalCopies(at, m_factor);
-    std::copy(perm, perm + n, newPerm);
-    const StorageIndex* dofAt = m_Pinv.indices().data();
-    for (const auto& w : relabel.windows)
-      for (Index k = w.first; k < w.second; ++k)
-        if (relabel.newPosition[k] >= 0) newPerm[dofAt[k]] = relabel.newPosition[k];
   } else {
     relabel.buildWithRoom(at, m_factor, [](Index columns) { return (std::max)(Index(2), columns / 4); });
+    change.newPerm.resize(total);
     const StorageIndex* to = relabel.newPosition.data();
-    for (Index i = 0; i < n; ++i) newPerm[i] = to[perm[i]];
+    for (Index i = 0; i < n; ++i) change.newPerm[i] = to[perm[i]];
   }
   // each copy right after its origin, copies of one origin in increasing order
   change.placed.resize(m_factor.n, 0);  // (by position; zero between calls)
+  change.copyPositions.resize(total - n);
   for (Index i = n; i < total; ++i) {
     const StorageIndex po = perm[change.preList[i]];
-    change.newPerm[i] = StorageIndex(relabel.newPosition[po] + 1 + change.placed[po]++);
+    change.copyPositions[i - n] = StorageIndex(relabel.newPosition[po] + 1 + change.placed[po]++);
   }
+  if (!room) std::copy(change.copyPositions.begin(), change.copyPositions.end(), change.newPerm.begin() + n);
   change.layoutReady = true;
 }
 
@@ -1428,7 +1446,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
     change.newOfOld[i] = kept ? StorageIndex(next) : StorageIndex(-1);
     if (kept) change.oldOfNew[next++] = StorageIndex(i);
   }
-  const StorageIndex* perm = m_P.indices().data();
+  const StorageIndex* perm = m_P.data();
   change.mergedTarget.resize(merged.size());
   change.droppedAt.resize(merged.size());
   std::vector<std::pair<StorageIndex, StorageIndex> >& into = m_mergeInto;  // (kept new dof, merged dof)
@@ -1473,7 +1491,7 @@ UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>& UpdatableSupernodalLLT<Ma
   const StorageIndex* oldOfNew = change.oldOfNew.data();
   StorageIndex* newPerm = change.newPerm.data();
   for (Index x = 0; x < total; ++x) newPerm[x] = perm[oldOfNew[x]];
-  const StorageIndex* dofAt = m_Pinv.indices().data();
+  const StorageIndex* dofAt = m_Pinv.data();
   for (const auto& w : relabel.windows)
     for (Index k = w.first; k < w.second; ++k)
       if (relabel.newPosition[k] >= 0) newPerm[change.newOfOld[dofAt[k]]] = relabel.newPosition[k];
@@ -1542,7 +1560,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::splitOwnInputChanges
   // an insertion folds in the new structure (new numbering); a merge in the previous one (the
   // merged dofs' rows and columns still there, previous numbering)
   const bool previousStructure = change.merging;
-  const StorageIndex* perm = previousStructure ? change.newPerm.data() : m_P.indices().data();
+  const StorageIndex* perm = previousStructure ? change.newPerm.data() : m_P.data();
   const std::vector<StorageIndex>& colToSuper =
       previousStructure ? m_structureBackup.previousColToSuper(m_factor) : m_factor.colToSuper;
   const char* removed = previousStructure ? nullptr : m_removedPermuted.data();  // (a merge folds only without removed dofs)
@@ -1636,7 +1654,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   const StorageIndex* outer = pa->outerIndexPtr();
   const StorageIndex* inner = pa->innerIndexPtr();
   const Scalar* values = pa->valuePtr();
-  const StorageIndex* perm = m_P.indices().data();
+  const StorageIndex* perm = m_P.data();
 
   // 1. Compare with the current matrix (changed dofs, where the kept entries move, the entries
   //    it lacks) and check the pattern of the new entries.
@@ -1728,7 +1746,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   fresh.resize(diff.fresh.size());
   for (Index k = 0; k < Index(fresh.size()); ++k) {  // in the lower triangle of the new C
     const Index p = diff.fresh[k], x = diff.freshOuter[k], y = m_store.inner[p];
-    const StorageIndex pi = change.newPerm[rowMajor ? x : y], pj = change.newPerm[rowMajor ? y : x];
+    const StorageIndex pi = change.newPositionOf(rowMajor ? x : y, perm), pj = change.newPositionOf(rowMajor ? y : x, perm);
     fresh[k] = pi >= pj ? FreshEntry<StorageIndex>{p, pi, pj} : FreshEntry<StorageIndex>{~p, pj, pi};
   }
   // the transposed pattern follows the store: in place, each changed dof and copy gets its list
@@ -1758,35 +1776,46 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     const StorageIndex x = change.newOfOld[i];
     if (x < 0) continue;  // a removed dof merged away
     m_removedList.push_back(x);
-    m_removedOriginal[x] = m_removedPermuted[change.newPerm[x]] = 1;
+    m_removedOriginal[x] = m_removedPermuted[change.newPositionOf(x, perm)] = 1;
   }
   // the new permutation and its inverse; the previous ones stay in change for a revert. The
   // inverse is read off the previous one in order (the relabeling keeps the old columns' order).
-  {
-    const StorageIndex* oldPinv = m_Pinv.indices().data();
+  if (change.inPlace()) {  // a local insertion: only the windows' dofs move, and the copies come
+    const DofRelabeling<StorageIndex>& relabel = change.relabel;
+    change.movedDofs.clear();
+    change.previousDofAt.clear();
+    for (const auto& w : relabel.windows)
+      for (Index k = w.first; k < w.second; ++k) {
+        const StorageIndex d = m_Pinv[k];
+        change.previousDofAt.push_back(d);
+        if (d >= 0 && relabel.newPosition[k] != StorageIndex(k)) change.movedDofs.emplace_back(d, StorageIndex(k));
+      }
+    for (const auto& moved : change.movedDofs) m_P[moved.first] = relabel.newPosition[moved.second];
+    m_P.insert(m_P.end(), change.copyPositions.begin(), change.copyPositions.end());
+    const StorageIndex* previous = change.previousDofAt.data();
+    for (const auto& w : relabel.windows) {
+      for (Index j = w.first; j < w.second; ++j) {  // (a window's old positions lie in it)
+        const StorageIndex k = relabel.oldPosition[j];
+        m_Pinv[j] = k < 0 ? StorageIndex(-1) : previous[k - w.first];
+      }
+      previous += w.second - w.first;
+    }
+    for (Index x = n; x < total; ++x) m_Pinv[m_P[x]] = StorageIndex(x);  // the copies
+  } else {
+    const StorageIndex* oldPinv = m_Pinv.data();
     change.newPinv.resize(change.relabel.newSize);
     auto newDof = [&change](StorageIndex o) {  // (a merge renumbers only from its first merged dof on)
       return o < 0 || !change.merging || o < change.firstMerged ? o : change.newOfOld[o];
     };
     const Index unmoved = (std::min)(change.relabel.firstMoved, change.relabel.newSize);  // (below it, no column moves)
-    if (!change.merging && change.relabel.local) {  // a local insertion: the positions move only in the windows
-      StorageIndex* newPinv = change.newPinv.data();
-      std::copy(oldPinv, oldPinv + change.relabel.newSize, newPinv);
-      for (const auto& w : change.relabel.windows)
-        for (Index j = w.first; j < w.second; ++j) {
-          const StorageIndex k = change.relabel.oldPosition[j];
-          newPinv[j] = k < 0 ? StorageIndex(-1) : oldPinv[k];
-        }
-    } else {
-      for (Index j = 0; j < unmoved; ++j) change.newPinv[j] = newDof(oldPinv[j]);
-      for (Index j = unmoved; j < change.relabel.newSize; ++j) {
-        const StorageIndex k = change.relabel.oldPosition[j];
-        change.newPinv[j] = newDof(k < 0 ? StorageIndex(-1) : oldPinv[k]);
-      }
+    for (Index j = 0; j < unmoved; ++j) change.newPinv[j] = newDof(oldPinv[j]);
+    for (Index j = unmoved; j < change.relabel.newSize; ++j) {
+      const StorageIndex k = change.relabel.oldPosition[j];
+      change.newPinv[j] = newDof(k < 0 ? StorageIndex(-1) : oldPinv[k]);
     }
     for (Index x = n; x < total; ++x) change.newPinv[change.newPerm[x]] = StorageIndex(x);  // the copies
-    m_P.indices().swap(change.newPerm);
-    m_Pinv.indices().swap(change.newPinv);
+    m_P.swap(change.newPerm);
+    m_Pinv.swap(change.newPinv);
   }
   const Index oldN = m_n, oldMaxRows = m_maxRows;
   const double oldTotalFlops = m_totalFlops;
@@ -1828,7 +1857,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       const auto& node = m_factor.nodes[s];
       bool same = true;
       for (Index c = node.firstCol; c < node.firstCol + node.ncols && same; ++c) {
-        const StorageIndex o = change.oldOfNew[m_Pinv.indices()[c]];
+        const StorageIndex o = change.oldOfNew[m_Pinv[c]];
         same = o >= 0 && !changed[o];
       }
       const bool sameRows = !change.merging || Index(backup.rows[s].size()) == node.nrows();
@@ -1846,10 +1875,10 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
       for (Index s : dirty) {  // the copies and merged dofs: a lower bound of the ranks
         const auto& node = m_factor.nodes[s];
         for (Index c = node.firstCol; c < node.firstCol + node.ncols; ++c)
-          rankColumns[s] += change.oldOfNew[m_Pinv.indices()[c]] < 0;
+          rankColumns[s] += change.oldOfNew[m_Pinv[c]] < 0;
         if (!change.merging)
           for (Index k = node.ncols; k < node.nrows(); ++k)
-            rowRank[s] += 2 * (change.oldOfNew[m_Pinv.indices()[node.rows[k]]] < 0);
+            rowRank[s] += 2 * (change.oldOfNew[m_Pinv[node.rows[k]]] < 0);
         else if (mergeFolds)  // (its change is taken on its previous rows below, the merged ones included)
           for (Index k = backup.ncols[s]; k < Index(backup.rows[s].size()); ++k)
             rowRank[s] += 2 * (change.relabel.newPosition[backup.rows[s][k]] < 0);
@@ -1863,7 +1892,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
           ownRank[t] += 2;
         };
         auto ownNew = [&](Index x) {  // (new numbering)
-          const Index j = m_P.indices()[x];
+          const Index j = m_P[x];
           if (m_removedPermuted[j]) return;
           const Index t = m_factor.colToSuper[j];
           own(t, j - m_factor.nodes[t].firstCol);
@@ -1892,7 +1921,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
         for (Index s : dirty) {
           const auto& node = m_factor.nodes[s];
           for (Index c = node.firstCol; c < node.firstCol + node.ncols; ++c) {
-            const StorageIndex x = m_Pinv.indices()[c];
+            const StorageIndex x = m_Pinv[c];
             rankColumns[s] += diff.mismatch[x] > 0;
             likelyRankColumns[s] += diff.mismatch[x] > 1;
           }
@@ -1950,22 +1979,30 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   const Index bad = run();
   const auto computed = std::chrono::steady_clock::now();
   if (bad >= 0) {  // not positive definite: everything goes back as it was
-    m_failedColumn = m_Pinv.indices()[bad];
+    m_failedColumn = m_Pinv[bad];
     restoreFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
     diff.revert(m_store);
     if (transposedInPlace)
       m_transposed.revert();
     else
       std::swap(m_transposed, diff.spareTransposed);
-    for (StorageIndex x : m_removedList) m_removedOriginal[x] = m_removedPermuted[m_P.indices()[x]] = 0;
-    m_P.indices().swap(change.newPerm);
-    m_Pinv.indices().swap(change.newPinv);
+    for (StorageIndex x : m_removedList) m_removedOriginal[x] = m_removedPermuted[m_P[x]] = 0;
+    if (change.inPlace()) {
+      m_P.resize(n);
+      for (const auto& moved : change.movedDofs) m_P[moved.first] = moved.second;
+      const StorageIndex* previous = change.previousDofAt.data();
+      for (const auto& w : change.relabel.windows)
+        for (Index j = w.first; j < w.second; ++j) m_Pinv[j] = *previous++;
+    } else {
+      m_P.swap(change.newPerm);
+      m_Pinv.swap(change.newPinv);
+    }
     m_removedOriginal.resize(oldN, 0);
     m_removedPermuted.resize(m_factor.n, 0);
     m_removedList.swap(oldRemovedList);
-    for (StorageIndex i : m_removedList) m_removedOriginal[i] = m_removedPermuted[m_P.indices()[i]] = 1;
+    for (StorageIndex i : m_removedList) m_removedOriginal[i] = m_removedPermuted[m_P[i]] = 1;
     {  // (the rare failure path rebuilds the assembly maps from the previous matrix)
-      std::vector<StorageIndex> previousPerm(m_P.indices().data(), m_P.indices().data() + oldN);
+      std::vector<StorageIndex> previousPerm(m_P.data(), m_P.data() + oldN);
       PermutedLowerEntries<StorageIndex> lower;
       permuteTriangle<rowMajor>(m_store, previousPerm, lower, static_cast<CompressedPattern<StorageIndex>*>(nullptr),
                                 m_factor.n);
@@ -2031,11 +2068,11 @@ Matrix<typename MatrixType_::Scalar, Dynamic, Dynamic> UpdatableSupernodalLLT<Ma
     const Ref<const Matrix<Scalar, Dynamic, Dynamic> > known(g.derived());
     std::vector<StorageIndex> columns(m_removedList.size());
     for (Index r = 0; r < Index(m_removedList.size()); ++r) {
-      columns[r] = m_P.indices()[m_removedList[r]];
+      columns[r] = m_P[m_removedList[r]];
       x.row(columns[r]) = known.row(m_removedList[r]);
     }
     internal::updatable_cholesky::subtractDirichletCoupling<bool(MatrixType::IsRowMajor)>(
-        m_store, m_transposed, m_P.indices().data(), m_Pinv.indices().data(), m_removedPermuted.data(), columns,
+        m_store, m_transposed, m_P.data(), m_Pinv.data(), m_removedPermuted.data(), columns,
         x.data(), x.rows(), x.cols());
   }
   solveInPlacePermuted(x);
