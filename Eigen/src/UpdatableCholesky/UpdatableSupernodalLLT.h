@@ -1374,7 +1374,9 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildInsertionLayout
   if (room) {  // the old dofs keep their positions but in the windows (m_P changed in place, later)
     relabel.buildLocalCopies(at, m_factor);
   } else {
-    relabel.buildWithRoom(at, m_factor, [](Index columns) { return (std::max)(Index(2), columns / 4); });
+    // (room for as many copies as the supernode has columns: a cut gives each seam vertex one copy,
+    // so a fresh seam then fits in the supernodes it crosses without another layout anew)
+    relabel.buildWithRoom(at, m_factor, [](Index columns) { return (std::max)(Index(2), columns); });
     change.newPerm.resize(total);
     const StorageIndex* to = relabel.newPosition.data();
     for (Index i = 0; i < n; ++i) change.newPerm[i] = to[perm[i]];
