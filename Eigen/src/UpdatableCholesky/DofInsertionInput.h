@@ -97,6 +97,7 @@ struct InputDiff {
 
   /** Makes posMap the identity on the positions of \a store. */
   void resetPositions(const InputStore<Scalar, StorageIndex>& store) {
+    posMap.reserve(store.inner.capacity());  // (grows with the store, without a copy)
     posMap.resize(store.inner.size());
     for (Index q = 0; q < Index(posMap.size()); ++q) posMap[q] = StorageIndex(q);
     posMapIsIdentity = true;

@@ -61,8 +61,11 @@ struct InputStore {
     end.resize(no);
     inner.clear();
     values.clear();
-    inner.reserve(a.nonZeros() / 2 + no);
-    values.reserve(a.nonZeros() / 2 + no);
+    // (with headroom for the outer vectors that later updates rewrite at the end of the pool:
+    // the first cuts after compute() then do not move it)
+    const Index expected = a.nonZeros() / 2 + no;
+    inner.reserve(expected + expected / 8);
+    values.reserve(expected + expected / 8);
     for (Index o = 0; o < no; ++o) {
       begin[o] = Index(inner.size());
       for (Index p = outer[o]; p < outer[o + 1]; ++p)
@@ -163,6 +166,7 @@ struct TransposedPattern {
       begin[y] = end[y] = sum;
       sum += count;
     }
+    pool.reserve(sum + sum / 8 + n);  // (headroom for rewrites, as the store's)
     pool.resize(sum);
     for (Index x = 0; x < n; ++x)
       for (Index p = store.begin[x]; p < store.end[x]; ++p) {

@@ -752,11 +752,16 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   m_factor.build(partition);
   buildAssemblyMaps(lower, m_factor);
   m_numeric.reset();
+  // 4. room after each supernode for the copies of later cuts, so that a first insertDofs() is
+  //    as local as the later ones (the free positions cost the solves only zeros)
+  std::vector<StorageIndex> spread;
+  m_factor.spreadPositions(&internal::updatable_cholesky::copyRoomFor, spread);
+  for (Index i = 0; i < n; ++i) perm[i] = spread[perm[i]];
 
   m_P.assign(perm.begin(), perm.end());
-  m_Pinv.resize(n);
+  m_Pinv.assign(m_factor.n, StorageIndex(-1));
   for (Index i = 0; i < n; ++i) m_Pinv[m_P[i]] = StorageIndex(i);
-  m_removedPermuted.assign(n, 0);
+  m_removedPermuted.assign(m_factor.n, 0);
   m_removedOriginal.assign(n, 0);
   m_workspace.resize(m_factor.count());
   m_totalFlops = m_factor.flops();
@@ -1374,9 +1379,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::buildInsertionLayout
   if (room) {  // the old dofs keep their positions but in the windows (m_P changed in place, later)
     relabel.buildLocalCopies(at, m_factor);
   } else {
-    // (room for as many copies as the supernode has columns: a cut gives each seam vertex one copy,
-    // so a fresh seam then fits in the supernodes it crosses without another layout anew)
-    relabel.buildWithRoom(at, m_factor, [](Index columns) { return (std::max)(Index(2), columns); });
+    relabel.buildWithRoom(at, m_factor, &internal::updatable_cholesky::copyRoomFor);
     change.newPerm.resize(total);
     const StorageIndex* to = relabel.newPosition.data();
     for (Index i = 0; i < n; ++i) change.newPerm[i] = to[perm[i]];
