@@ -65,28 +65,22 @@ struct DofRelabeling {
     * into its free positions. Writes only the windows (and undoes the previous call's). */
   template <typename Factor>
   void buildLocalCopies(const std::vector<StorageIndex>& at, const Factor& f) {
-    const Index n = Index(copies.size());
-    startLocal(n);
-    for (std::size_t q = 0; q < at.size();) {
-      const Index owner = f.colToSuper[at[q]], first = Index(at[q]);
-      const Index usedEnd = f.nodes[owner].firstCol + f.nodes[owner].ncols;
-      Index shift = 0;
-      for (Index k = first; k < usedEnd; ++k) {
-        newPosition[k] = StorageIndex(k + shift);
-        oldPosition[k + shift] = StorageIndex(k);
-        moved += shift > 0;
-        if (q < at.size() && Index(at[q]) == k) {
-          const Index count = copies[k];
-          for (Index t = 1; t <= count; ++t) oldPosition[k + shift + t] = StorageIndex(-1);
-          shift += count;
-          ++q;
-        }
-      }
-      eigen_assert(shift <= f.freePositions(owner) && "buildLocalCopies: a supernode without room for its copies");
-      for (Index k = usedEnd; k < usedEnd + shift; ++k) newPosition[k] = StorageIndex(-1);  // (free, used up)
-      windows.emplace_back(StorageIndex(first), StorageIndex(usedEnd + shift));
-    }
-    finishLocal(n);
+    walkWindows(
+        at, f,
+        [this](Index k, bool origin, Index shift) {
+          newPosition[k] = StorageIndex(k + shift);
+          oldPosition[k + shift] = StorageIndex(k);
+          moved += shift > 0;
+          if (!origin) return shift;
+          for (Index t = 1; t <= Index(copies[k]); ++t) oldPosition[k + shift + t] = StorageIndex(-1);
+          return shift + Index(copies[k]);
+        },
+        [this, &f](Index owner, Index usedEnd, Index shift) {
+          eigen_assert(shift <= f.freePositions(owner) && "buildLocalCopies: a supernode without room for its copies");
+          EIGEN_UNUSED_VARIABLE(owner);
+          for (Index k = usedEnd; k < usedEnd + shift; ++k) newPosition[k] = StorageIndex(-1);  // (free, used up)
+          return usedEnd + shift;
+        });
   }
 
   /** A local merge: the old positions \a at (increasing, distinct, used columns) are dropped; in
@@ -94,27 +88,22 @@ struct DofRelabeling {
     * before them, and as many free positions appear after its columns. */
   template <typename Factor>
   void buildLocalDrops(const std::vector<StorageIndex>& at, const Factor& f) {
-    const Index n = Index(copies.size());
-    startLocal(n);
-    for (std::size_t q = 0; q < at.size();) {
-      const Index owner = f.colToSuper[at[q]], first = Index(at[q]);
-      const Index usedEnd = f.nodes[owner].firstCol + f.nodes[owner].ncols;
-      Index shift = 0;
-      for (Index k = first; k < usedEnd; ++k) {
-        if (q < at.size() && Index(at[q]) == k) {
-          newPosition[k] = StorageIndex(-1);
-          ++shift;
-          ++q;
-          continue;
-        }
-        newPosition[k] = StorageIndex(k - shift);
-        oldPosition[k - shift] = StorageIndex(k);
-        moved += shift > 0;
-      }
-      for (Index k = usedEnd - shift; k < usedEnd; ++k) oldPosition[k] = StorageIndex(-1);  // (free now)
-      windows.emplace_back(StorageIndex(first), StorageIndex(usedEnd));
-    }
-    finishLocal(n);
+    walkWindows(
+        at, f,
+        [this](Index k, bool dropped, Index shift) {
+          if (dropped) {
+            newPosition[k] = StorageIndex(-1);
+            return shift + 1;
+          }
+          newPosition[k] = StorageIndex(k - shift);
+          oldPosition[k - shift] = StorageIndex(k);
+          moved += shift > 0;
+          return shift;
+        },
+        [this](Index, Index usedEnd, Index shift) {
+          for (Index k = usedEnd - shift; k < usedEnd; ++k) oldPosition[k] = StorageIndex(-1);  // (free now)
+          return usedEnd;
+        });
   }
 
   /** An insertion that lays the positions of factor \a f out anew (when some origin's supernode
@@ -173,6 +162,28 @@ struct DofRelabeling {
   void finishLocal(Index n) {
     newSize = n;
     firstMoved = windows.empty() ? n : Index(windows.front().first);
+  }
+  /** The walk of a local relabeling: for each supernode of \a f holding old positions of \a at
+    * (increasing), its used columns k from the first of them on get column(k, k listed in at,
+    * the shift so far), which returns the shift after k; finish(supernode, its used end, the
+    * final shift) returns the end of the supernode's window, which starts at its first listed
+    * position. */
+  template <typename Factor, typename Column, typename Finish>
+  void walkWindows(const std::vector<StorageIndex>& at, const Factor& f, Column&& column, Finish&& finish) {
+    const Index n = Index(copies.size());
+    startLocal(n);
+    for (std::size_t q = 0; q < at.size();) {
+      const Index owner = f.colToSuper[at[q]], first = Index(at[q]);
+      const Index usedEnd = f.nodes[owner].firstCol + f.nodes[owner].ncols;
+      Index shift = 0;
+      for (Index k = first; k < usedEnd; ++k) {
+        const bool listed = q < at.size() && Index(at[q]) == k;
+        shift = column(k, listed, shift);
+        q += listed;
+      }
+      windows.emplace_back(StorageIndex(first), StorageIndex(finish(owner, usedEnd, shift)));
+    }
+    finishLocal(n);
   }
 };
 
@@ -375,7 +386,8 @@ void cleanHoldersOfWindows(const SupernodalFactor<Scalar, StorageIndex>& f, cons
 template <typename Scalar, typename StorageIndex>
 void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<UpdateBuffer<Scalar> >& cache,
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
-                   FactorStructureBackup<Scalar, StorageIndex>& backup, std::vector<StorageIndex>& position) {
+                   const std::vector<Index>& dirty, FactorStructureBackup<Scalar, StorageIndex>& backup,
+                   std::vector<StorageIndex>& position) {
   const Index ns = f.count();
   backup.n = f.n;
   backup.local = relabel.local;
@@ -403,11 +415,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
   backup.values.resize(ns);
   backup.cache.resize(ns);
   backup.pending.resize(ns);
-  for (Index s = 0; s < ns; ++s) {
-    // a clean supernode wholly below the first moved column stays as it is, unread (backup.firstCol
-    // and backup.ncols are written for the dirty supernodes only); after a local relabeling, so
-    // does every one but those renumbered above
-    if (!mark[s] && (relabel.local || Index(f.lastRow[s]) < relabel.firstMoved)) continue;
+  auto relabelSupernode = [&](Index s) {
     auto& node = f.nodes[s];
     backup.renumberedCount += !mark[s];
     if (!mark[s]) {  // (rows are increasing: those before the first moved column stay)
@@ -440,6 +448,15 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
     }
     node.firstCol = node.ncols > 0 ? Index(node.rows[0]) : 0;
     f.noteLastRow(s);
+  };
+  // a clean supernode wholly below the first moved column stays as it is, unread (backup.firstCol
+  // and backup.ncols are written for the dirty supernodes only); after a local relabeling, so
+  // does every one but those renumbered above
+  if (relabel.local) {
+    for (Index s : dirty) relabelSupernode(s);
+  } else {
+    for (Index s = 0; s < ns; ++s)
+      if (mark[s] || Index(f.lastRow[s]) >= relabel.firstMoved) relabelSupernode(s);
   }
   f.n = relabel.newSize;
   if (!relabel.local) {
@@ -455,8 +472,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
   }
   // relative positions of the children of dirty supernodes (the parents' rows changed)
   position.resize(f.n, StorageIndex(-1));
-  for (Index p = 0; p < ns; ++p) {
-    if (!mark[p]) continue;
+  for (Index p : dirty) {
     const auto& pn = f.nodes[p];
     for (Index k = 0; k < pn.nrows(); ++k) position[pn.rows[k]] = StorageIndex(k);
     for (Index c = f.firstChild[p]; c != -1; c = f.nextSibling[c]) {
@@ -474,15 +490,13 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
 template <typename Scalar, typename StorageIndex>
 void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<UpdateBuffer<Scalar> >& cache,
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
-                   FactorStructureBackup<Scalar, StorageIndex>& backup) {
+                   const std::vector<Index>& dirty, FactorStructureBackup<Scalar, StorageIndex>& backup) {
   const Index ns = f.count();
   for (Index s : backup.renumbered) {  // (a local relabeling's clean supernodes)
     for (auto& r : f.nodes[s].rows) r = relabel.oldPosition[r];
     f.noteLastRow(s);
   }
-  for (Index s = 0; s < ns; ++s) {
-    // (relabelFactor() left it as it was)
-    if (!mark[s] && (backup.local || Index(f.lastRow[s]) < relabel.firstMoved)) continue;
+  auto restoreSupernode = [&](Index s) {
     auto& node = f.nodes[s];
     if (!mark[s]) {
       for (auto& r : node.rows) r = relabel.oldPosition[r];
@@ -495,11 +509,16 @@ void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
       if (Index(cache.size()) == ns) cache[s].swap(backup.cache[s]);
     }
     f.noteLastRow(s);
+  };
+  // (the ones relabelFactor() left as they were are skipped)
+  if (backup.local) {
+    for (Index s : dirty) restoreSupernode(s);
+  } else {
+    for (Index s = 0; s < ns; ++s)
+      if (mark[s] || Index(f.lastRow[s]) >= relabel.firstMoved) restoreSupernode(s);
   }
-  for (Index p = 0; p < ns; ++p) {
-    if (!mark[p]) continue;
+  for (Index p : dirty)
     for (Index c = f.firstChild[p]; c != -1; c = f.nextSibling[c]) f.nodes[c].parentPosition.swap(backup.parentPosition[c]);
-  }
   f.n = backup.n;
   if (!backup.local) f.colToSuper.swap(backup.colToSuper);
 }

@@ -92,6 +92,7 @@ struct InputDiff {
   std::vector<FreshEntry<StorageIndex> > freshEntries, freshSorted;  ///< the fresh entries in C, as found / by column
   std::vector<StorageIndex> freshCount;  ///< scratch of sortFreshEntries()
   std::vector<char> mismatch;  ///< scratch by new dof, zero between uses (gluingMismatches())
+  std::vector<char> ownerFlag;  ///< scratch by supernode, zero between uses (ownersOfRewrites())
   std::vector<StorageIndex> mismatchList;  ///< the dofs where the cut matrix does not glue back
   GluingScratch<Scalar> gluing;  ///< gluingMismatches()'s scratch
 
@@ -140,7 +141,8 @@ struct InputDiff {
 
   /** Bytes held by the scratch arrays and spare buffers. */
   Index bytes() const {
-    return Index(changed.capacity() + mismatch.capacity() + (stamp.capacity() + fresh.capacity()) * sizeof(Index) +
+    return Index(changed.capacity() + mismatch.capacity() + ownerFlag.capacity() +
+                 (stamp.capacity() + fresh.capacity()) * sizeof(Index) +
                  (posMap.capacity() + freshOuter.capacity() + position.capacity() + changedList.capacity() +
                   mismatchList.capacity()) *
                      sizeof(StorageIndex) +
@@ -428,20 +430,25 @@ void gluingMismatches(const InputStore<Scalar, StorageIndex>& cut, const std::ve
 }
 
 /** \internal The supernodes (old numbering, before relabelFactor()) owning an entry of an outer
-  * vector that an in-place diffInput() rewrote: their assembly maps must follow the entries. */
+  * vector that an in-place diffInput() rewrote, increasing, into \a owners: their assembly maps
+  * must follow the entries. */
 template <typename Scalar, typename StorageIndex>
-std::vector<Index> ownersOfRewrites(const SupernodalFactor<Scalar, StorageIndex>& f,
-                                    const InputStore<Scalar, StorageIndex>& store,
-                                    const InputDiff<Scalar, StorageIndex>& d, const StorageIndex* perm) {
-  std::vector<char> owns(f.count(), 0);  // (flags, not a sort: rewrites are many, owners few)
+void ownersOfRewrites(const SupernodalFactor<Scalar, StorageIndex>& f, const InputStore<Scalar, StorageIndex>& store,
+                      InputDiff<Scalar, StorageIndex>& d, const StorageIndex* perm, std::vector<Index>& owners) {
+  std::vector<char>& owns = d.ownerFlag;  // (flags: the entries rewritten are many, their owners few)
+  owns.resize(f.count(), 0);
+  owners.clear();
   for (const auto& r : d.rewrites) {
     const Index pi = perm[r.outer];
-    for (Index q = r.begin; q < r.end; ++q) owns[f.colToSuper[(std::min)(pi, Index(perm[store.inner[q]]))]] = 1;
+    for (Index q = r.begin; q < r.end; ++q) {
+      const Index s = f.colToSuper[(std::min)(pi, Index(perm[store.inner[q]]))];
+      if (owns[s]) continue;
+      owns[s] = 1;
+      owners.push_back(s);
+    }
   }
-  std::vector<Index> owners;
-  for (Index s = 0; s < f.count(); ++s)
-    if (owns[s]) owners.push_back(s);
-  return owners;
+  std::sort(owners.begin(), owners.end());
+  for (Index s : owners) owns[s] = 0;
 }
 
 /** \internal Writes into \a out the fresh \a entries (columns below \a columns) ordered by column,

@@ -1765,8 +1765,8 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     std::swap(m_transposed, diff.spareTransposed);
   }
   std::vector<Index> movedOwners;  // clean supernodes whose entries moved in the store
-  if (diff.inPlace) movedOwners = ownersOfRewrites(m_factor, m_store, diff, perm);
-  relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup, diff.position);
+  if (diff.inPlace) ownersOfRewrites(m_factor, m_store, diff, perm, movedOwners);
+  relabelFactor(m_factor, m_numeric.cache(), change.relabel, mark, dirty, backup, diff.position);
   sortFreshEntries(fresh, m_factor.n, diff.freshCount, diff.freshSorted);
   remapAssemblyMaps(m_factor, backup, change.relabel, mark, dirty, diff.posMap, diff.freshSorted, diff.position,
                     diff.inPlace ? &movedOwners : nullptr);
@@ -1985,7 +1985,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
   const auto computed = std::chrono::steady_clock::now();
   if (bad >= 0) {  // not positive definite: everything goes back as it was
     m_failedColumn = m_Pinv[bad];
-    restoreFactor(m_factor, m_numeric.cache(), change.relabel, mark, backup);
+    restoreFactor(m_factor, m_numeric.cache(), change.relabel, mark, dirty, backup);
     diff.revert(m_store);
     if (transposedInPlace)
       m_transposed.revert();
