@@ -913,11 +913,11 @@ TEST_CASE_TEMPLATE("insertDofs refactors only the dirty part", Cfg, uctest::d_in
 }
 
 TEST_CASE_TEMPLATE("a cut whose supernodes have room moves only their columns", Cfg, UC_CORE_CONFIGS) {
-  // The factor keeps free positions after each supernode's columns (SupernodalFactor), from the
-  // analysis on: the first cut fits in its origins' supernodes; it moves only the columns after
-  // the origins there and renumbers only the supernodes below them that hold those columns as
-  // rows. A merge gives its copies' positions back, so a cut of the same seam fits again. A cut
-  // with more copies than a supernode has room for lays the positions out anew.
+  // The factor keeps free positions after each supernode's columns (SupernodalFactor). The first
+  // cut lays the positions out anew with room; a merge gives its copies' positions back; a cut
+  // of the same seam then fits in its origins' supernodes: it moves only the columns after the
+  // origins there and renumbers only the supernodes below them that hold those columns as rows.
+  // A cut with more copies than a supernode has room for lays the positions out anew again.
   // Every step must still be the factor of the current matrix, with the public permutation and
   // matrixL() free of the gaps, and Dirichlet solves must see the copies where they now are.
   typedef typename Cfg::FullMatrix FullMatrix;
@@ -936,10 +936,9 @@ TEST_CASE_TEMPLATE("a cut whose supernodes have room moves only their columns", 
   const std::vector<int> origin = G.split(seam, g);
   const FullMatrix Acut = G.template matrix<FullMatrix>();
   const Index n = A0.rows(), ns = llt.supernodeCount();
-  llt.insertDofs(toInput<Cfg>(Acut), origin);  // the first: local too (room from the analysis)
+  llt.insertDofs(toInput<Cfg>(Acut), origin);  // the first: a layout anew
   REQUIRE(llt.info() == Eigen::Success);
-  CHECK(llt.lastUpdate().movedPositions < n / 20);
-  CHECK(llt.lastUpdate().renumberedSupernodes < ns / 4);
+  CHECK(llt.lastUpdate().movedPositions > n / 2);
   checkAgainstFresh<Cfg>(llt, Acut, g);
   for (int cycle = 0; cycle < 3; ++cycle) {
     CAPTURE(cycle);

@@ -31,10 +31,9 @@ namespace Eigen {
 namespace internal {
 namespace updatable_cholesky {
 
-/** \internal The free positions kept after a supernode of \a columns columns, for the copies of
-  * later cuts (a cut gives each seam vertex one copy, so that a fresh seam fits in the supernodes
-  * it crosses): at analysis (SupernodalFactor::spreadPositions()) and whenever a cut lays the
-  * positions out anew (DofRelabeling::buildWithRoom()). */
+/** \internal The free positions kept after a supernode of \a columns columns when a cut lays the
+  * positions out anew (DofRelabeling::buildWithRoom()), for the copies of later cuts: a cut gives
+  * each seam vertex one copy, so that a fresh seam then fits in the supernodes it crosses. */
 inline Index copyRoomFor(Index columns) { return (std::max)(Index(2), columns); }
 
 /** \internal How the positions move (SupernodalFactor::n counts them: each supernode's columns,

@@ -106,38 +106,6 @@ struct SupernodalFactor {
     }
   }
 
-  /** Spreads the positions of a factor just built from a partition (its columns 0..n-1, in
-    * order, no free positions): supernode s keeps its columns in order and is followed by
-    * roomFor(its column count) free positions, room for the copies of later insertions
-    * (UpdatableSupernodalLLT::insertDofs(): a copy joins its origin's supernode). The rows are
-    * renumbered; parentPosition and the assembly maps are relative to the blocks and stay.
-    * \a position gets each previous position's new one. Nothing is spread (\a position the
-    * identity) when the new positions would not fit in StorageIndex. */
-  template <typename Room>
-  void spreadPositions(Room&& roomFor, std::vector<StorageIndex>& position) {
-    const Index ns = count(), previous = n;
-    position.resize(previous);
-    Index spread = 0;
-    for (const Node& node : nodes) spread += node.ncols + Index(roomFor(node.ncols));
-    if (spread <= previous || spread > Index(NumTraits<StorageIndex>::highest())) {
-      for (Index k = 0; k < previous; ++k) position[k] = StorageIndex(k);
-      return;
-    }
-    Index next = 0;
-    for (Node& node : nodes) {
-      for (Index c = 0; c < node.ncols; ++c) position[node.firstCol + c] = StorageIndex(next + c);
-      node.firstCol = next;
-      next += node.ncols + Index(roomFor(node.ncols));
-    }
-    n = next;
-    colToSuper.resize(n);
-    for (Index s = 0; s < ns; ++s)
-      for (Index k = nodes[s].firstCol; k < ownedEnd(s); ++k) colToSuper[k] = StorageIndex(s);
-    for (Node& node : nodes)
-      for (StorageIndex& row : node.rows) row = position[row];
-    for (Index s = 0; s < ns; ++s) noteLastRow(s);
-  }
-
   /** Number of stored entries of L (lower trapezoids, explicit zeros of relaxation included). */
   Index nonZeros() const {
     Index nnz = 0;

@@ -752,16 +752,12 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::analyzePattern(const
   m_factor.build(partition);
   buildAssemblyMaps(lower, m_factor);
   m_numeric.reset();
-  // 4. room after each supernode for the copies of later cuts, so that a first insertDofs() is
-  //    as local as the later ones (the free positions cost the solves only zeros)
-  std::vector<StorageIndex> spread;
-  m_factor.spreadPositions(&internal::updatable_cholesky::copyRoomFor, spread);
-  for (Index i = 0; i < n; ++i) perm[i] = spread[perm[i]];
-
+  // (contiguous positions: the first cut lays them out anew with room for copies, see
+  // buildInsertionLayout(); room from here on would cost every solve the wider vectors)
   m_P.assign(perm.begin(), perm.end());
-  m_Pinv.assign(m_factor.n, StorageIndex(-1));
+  m_Pinv.resize(n);
   for (Index i = 0; i < n; ++i) m_Pinv[m_P[i]] = StorageIndex(i);
-  m_removedPermuted.assign(m_factor.n, 0);
+  m_removedPermuted.assign(n, 0);
   m_removedOriginal.assign(n, 0);
   m_workspace.resize(m_factor.count());
   m_totalFlops = m_factor.flops();
