@@ -374,6 +374,21 @@ void cleanHoldersOfWindows(const SupernodalFactor<Scalar, StorageIndex>& f, cons
   for (Index c : out) flag[c] = 0;
 }
 
+/** \internal Calls \a step(s) on every supernode whose rows a relabeling changes: after a local
+  * relabeling the dirty ones (the clean ones it renumbers are handled apart), otherwise every dirty
+  * supernode and every clean one with a row at or past the first moved position (the others keep
+  * their rows: positions below \a firstMoved do not move, and moved ones only go up). */
+template <typename Scalar, typename StorageIndex, typename Step>
+void forEachRelabeledSupernode(const SupernodalFactor<Scalar, StorageIndex>& f, bool local, Index firstMoved,
+                               const std::vector<char>& mark, const std::vector<Index>& dirty, Step&& step) {
+  if (local) {
+    for (Index s : dirty) step(s);
+  } else {
+    for (Index s = 0; s < f.count(); ++s)
+      if (mark[s] || Index(f.lastRow[s]) >= firstMoved) step(s);
+  }
+}
+
 /** \internal Applies \a relabel to the factor: dirty supernodes (mark != 0) get new row lists
   * (merged rows dropped, copies inserted after their origins) and lose their values and cached
   * update matrix (moved into \a backup, to be recomputed); clean ones are renumbered in place
@@ -451,12 +466,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
   // a clean supernode wholly below the first moved column stays as it is, unread (backup.firstCol
   // and backup.ncols are written for the dirty supernodes only); after a local relabeling, so
   // does every one but those renumbered above
-  if (relabel.local) {
-    for (Index s : dirty) relabelSupernode(s);
-  } else {
-    for (Index s = 0; s < ns; ++s)
-      if (mark[s] || Index(f.lastRow[s]) >= relabel.firstMoved) relabelSupernode(s);
-  }
+  forEachRelabeledSupernode(f, relabel.local, relabel.firstMoved, mark, dirty, relabelSupernode);
   f.n = relabel.newSize;
   if (!relabel.local) {
     f.colToSuper.resize(f.n);  // one pass in order: a copy or a free position belongs to the supernode before it
@@ -510,12 +520,7 @@ void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
     f.noteLastRow(s);
   };
   // (the ones relabelFactor() left as they were are skipped)
-  if (backup.local) {
-    for (Index s : dirty) restoreSupernode(s);
-  } else {
-    for (Index s = 0; s < ns; ++s)
-      if (mark[s] || Index(f.lastRow[s]) >= relabel.firstMoved) restoreSupernode(s);
-  }
+  forEachRelabeledSupernode(f, backup.local, relabel.firstMoved, mark, dirty, restoreSupernode);
   for (Index p : dirty)
     for (Index c = f.firstChild[p]; c != -1; c = f.nextSibling[c]) f.nodes[c].parentPosition.swap(backup.parentPosition[c]);
   f.n = backup.n;
