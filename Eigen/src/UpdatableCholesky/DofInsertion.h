@@ -262,7 +262,7 @@ struct FactorStructureBackup {
   }
   std::vector<Index> firstCol, ncols;
   std::vector<std::vector<StorageIndex> > rows, parentPosition;  ///< dirty supernodes only
-  std::vector<Matrix<Scalar, Dynamic, Dynamic> > values;          ///< dirty supernodes only
+  std::vector<SupernodeBlock<Scalar> > values;                    ///< dirty supernodes only
   std::vector<UpdateBuffer<Scalar> > cache;                        ///< dirty supernodes only
   /** The deferred corrections of the dirty supernodes' cached update matrices, set aside with
     * them rather than applied: a refactored supernode never needs them, a folded one carries them
@@ -274,9 +274,8 @@ struct FactorStructureBackup {
     * page faults nor the zeroing of a new one (the update matrices of an insertion and of the
     * merge that undoes it are the same sizes, swapped). */
   SparePool<UpdateBuffer<Scalar> > spareCache;
-  /** The previous call's blocks of its dirty supernodes, kept likewise for blocks of the same
-    * number of entries (a block's storage is reused only at the same size). */
-  SparePool<Matrix<Scalar, Dynamic, Dynamic> > spareValues;
+  /** The previous call's blocks of its dirty supernodes, kept likewise (by capacity). */
+  SparePool<SupernodeBlock<Scalar> > spareValues;
 
   /** Empties what the call kept of the \a dirty supernodes (and of their children), so that
     * every per-supernode entry is empty between calls: the row lists keep their storage (the
@@ -290,7 +289,7 @@ struct FactorStructureBackup {
     for (Index s : dirty) {
       rows[s].clear();
       if (s < Index(pending.size())) pending[s].clear();
-      if (values[s].size() > 0) spareValues.add(values[s].size(), values[s]);  // (leaves it empty)
+      if (values[s].capacity() > 0) spareValues.add(values[s].capacity(), values[s]);  // (leaves it empty)
       if (!cache[s].empty()) spareCache.add(Index(cache[s].capacity()), cache[s]);  // (by capacity: what it can hold)
       UpdateBuffer<Scalar>().swap(cache[s]);
       for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) parentPosition[c].clear();
@@ -312,14 +311,17 @@ struct FactorStructureBackup {
     if (!pending[s].empty()) SupernodalNumeric<Scalar, StorageIndex>::applyCorrectionsTo(pending[s], m, cache[s].data());
   }
 
-  /** Gives \a block (empty) the storage of a spare block of exactly rows × cols entries, if there
-    * is one, resized to rows × cols (its values are stale: the caller overwrites them). */
-  void takeSpare(Index rows, Index cols, Matrix<Scalar, Dynamic, Dynamic>& block) {
+  /** Gives \a block (empty) rows × cols entries: the storage of the smallest spare block that
+    * holds them and at most twice as many, or else new storage with an eighth more room, so that a
+    * later cut that gives the supernode a few more rows or columns fits in it (its values are
+    * stale: the caller overwrites them). */
+  void takeSpare(Index rows, Index cols, SupernodeBlock<Scalar>& block) {
     const Index size = rows * cols;
-    if (size == 0 || !spareValues.take(size, size, block)) return;
-    block.resize(rows, cols);  // (the same number of entries: no reallocation)
+    if (size == 0) return;
+    if (!spareValues.take(size, 2 * size, block)) block.reserve(size + size / 8);
+    block.resize(rows, cols);  // (within the capacity: no reallocation)
 #ifndef NDEBUG
-    block.setConstant(Scalar(std::numeric_limits<typename NumTraits<Scalar>::Real>::quiet_NaN()));
+    std::fill(block.data(), block.data() + size, Scalar(std::numeric_limits<typename NumTraits<Scalar>::Real>::quiet_NaN()));
 #endif
   }
 
@@ -337,7 +339,7 @@ struct FactorStructureBackup {
   Index bytes() const {
     Index b = 0;
     for (const auto& entry : spareCache.entries) b += Index(entry.second.capacity() * sizeof(Scalar));
-    for (const auto& entry : spareValues.entries) b += Index(entry.second.size() * sizeof(Scalar));
+    for (const auto& entry : spareValues.entries) b += Index(entry.second.capacity() * sizeof(Scalar));
     b += spareCache.bytes() + spareValues.bytes();
     for (const auto& list : rows) b += Index(list.capacity() * sizeof(StorageIndex));
     for (const auto& list : parentPosition) b += Index(list.capacity() * sizeof(StorageIndex));

@@ -400,7 +400,7 @@ void extendCorrections(const std::vector<Correction>& previous, const std::vecto
   * the update is reverted), else copied (\a at, \a runs: scratch). */
 template <typename Scalar, typename StorageIndex, typename PivotOf>
 bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<StorageIndex>& oldRows,
-                       Matrix<Scalar, Dynamic, Dynamic>& oldValues, UpdateBuffer<Scalar>& oldU,
+                       SupernodeBlock<Scalar>& oldValues, UpdateBuffer<Scalar>& oldU,
                        const std::vector<StorageIndex>& newPosition, std::vector<Index>& at, UpdateBuffer<Scalar>& U,
                        std::vector<PositionRun>& runs, PivotOf&& pivotOf) {
   const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, oldNr = Index(oldRows.size()), oldNc = oldValues.cols();
@@ -682,9 +682,12 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
   Index nc = 0;  // (kept columns)
   while (nc < nr && kept[nc] < oldNc) ++nc;
   const Index m = nr - nc;
-  Matrix<Scalar, Dynamic, Dynamic> block;
+  SupernodeBlock<Scalar> block;
   UpdateBuffer<Scalar> cut;
   if (ok) {  // the block, the update matrix and its deferred corrections lose the merged dofs
+    // (into the buffers relabelFactor() gave the new structure, set aside in the backup meanwhile)
+    block.swap(backup.values[s]);
+    cut.swap(backup.cache[s]);
     for (auto& correction : numeric.pendingCorrections(s)) {
       Matrix<Scalar, Dynamic, Dynamic> W(m, correction.W.cols());
       for (Index i = 0; i < m; ++i) W.row(i) = correction.W.row(kept[nc + i] - oldNc);

@@ -8,11 +8,108 @@
 #ifndef EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_FACTOR_H
 #define EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_FACTOR_H
 
+#include <memory>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace Eigen {
 namespace internal {
 namespace updatable_cholesky {
+
+/** \internal An allocator whose value-initializing construct() (what std::vector::resize()
+  * calls for the new elements) leaves arithmetic scalars uninitialized instead of zeroing them.
+  * The cached update matrices are written before they are read (the front's rank-k product
+  * overwrites a lower triangle, or the caller zeroes it), so zeroing a new or grown one only
+  * cost a pass over its memory per refactored supernode. */
+template <typename T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    typedef UninitializedAllocator<U> other;
+  };
+  UninitializedAllocator() = default;
+  template <typename U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value) {
+    ::new (static_cast<void*>(p)) U;  // default-, not value-initialization
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <typename T, typename U>
+bool operator==(const UninitializedAllocator<T>&, const UninitializedAllocator<U>&) noexcept {
+  return true;
+}
+template <typename T, typename U>
+bool operator!=(const UninitializedAllocator<T>&, const UninitializedAllocator<U>&) noexcept {
+  return false;
+}
+
+/** \internal Storage of one cached update matrix (column-major, lower triangle meaningful); its
+  * new entries are not zeroed by resize(). */
+template <typename Scalar>
+using UpdateBuffer = std::vector<Scalar, UninitializedAllocator<Scalar> >;
+
+/** \internal The dense block of a supernode: rows() × cols() values, column-major, in storage
+  * that keeps its capacity when the block shrinks or changes shape. An update that reshapes a
+  * supernode sets its previous block aside and reuses the blocks of earlier calls
+  * (FactorStructureBackup::takeSpare()): with Eigen's Matrix only a block of exactly the same
+  * size could be reused, and a seam one vertex longer gave the root separator a new allocation,
+  * whose first touch cost about a page fault per 4 KiB (igea's 738-column root: ~1,000 faults,
+  * 18 ms, three times its refactorization). Entries are not initialized by resize(). */
+template <typename Scalar>
+class SupernodeBlock {
+ public:
+  typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
+
+  Index rows() const { return m_rows; }
+  Index cols() const { return m_cols; }
+  Index size() const { return m_rows * m_cols; }
+  /** The number of values the storage holds without reallocating. */
+  Index capacity() const { return Index(m_data.capacity()); }
+  Scalar* data() { return m_data.data(); }
+  const Scalar* data() const { return m_data.data(); }
+  Scalar& operator()(Index i, Index j) { return m_data[std::size_t(i + j * m_rows)]; }
+  const Scalar& operator()(Index i, Index j) const { return m_data[std::size_t(i + j * m_rows)]; }
+  /** The block as an Eigen matrix expression (no copy). */
+  Map<Dense> matrix() { return Map<Dense>(data(), m_rows, m_cols); }
+  Map<const Dense> matrix() const { return Map<const Dense>(data(), m_rows, m_cols); }
+  typename Map<Dense>::ColXpr col(Index j) { return matrix().col(j); }
+  typename Map<const Dense>::ConstColXpr col(Index j) const { return matrix().col(j); }
+
+  /** Gives the block \a rows × \a cols values; the previous values are not kept (nor copied when
+    * the storage grows). */
+  void resize(Index rows, Index cols) {
+    const std::size_t count = std::size_t(rows * cols);
+    if (count > m_data.capacity()) UpdateBuffer<Scalar>().swap(m_data);
+    m_data.resize(count);
+    m_rows = rows;
+    m_cols = cols;
+  }
+  /** Makes room for \a count values (the block and its values unchanged). */
+  void reserve(Index count) { m_data.reserve(std::size_t(count)); }
+  /** Copies an Eigen matrix in. */
+  template <typename Derived>
+  SupernodeBlock& operator=(const MatrixBase<Derived>& other) {
+    const Dense copy = other;  // (it may read this block)
+    resize(copy.rows(), copy.cols());
+    matrix() = copy;
+    return *this;
+  }
+  void swap(SupernodeBlock& other) {
+    m_data.swap(other.m_data);
+    std::swap(m_rows, other.m_rows);
+    std::swap(m_cols, other.m_cols);
+  }
+
+ private:
+  UpdateBuffer<Scalar> m_data;
+  Index m_rows = 0, m_cols = 0;
+};
 
 /** \internal One supernode: columns firstCol .. firstCol+ncols-1 of L, stored as a dense
   * column-major block of rows.size() × ncols values (lower trapezoid meaningful). */
@@ -22,7 +119,7 @@ struct Supernode {
   Index ncols = 0;                           ///< number of columns
   std::vector<StorageIndex> rows;            ///< its columns first, then the rows below, increasing
   std::vector<StorageIndex> parentPosition;  ///< for each row below, its position in the parent's rows
-  Matrix<Scalar, Dynamic, Dynamic> values;   ///< the dense block L(rows, columns)
+  SupernodeBlock<Scalar> values;             ///< the dense block L(rows, columns)
   /** Entries of the input matrix scattered into \c values: value source[k] goes to offset
     * target[k] of the block; a negative target ~t means "conjugate, then store at t". Listed
     * column by column (increasing local column), which the Dirichlet coupling relies on. */

@@ -188,43 +188,6 @@ ListSchedule makeListSchedule(const SupernodalFactor<Scalar, StorageIndex>& f, c
   return sched;
 }
 
-/** \internal An allocator whose value-initializing construct() (what std::vector::resize()
-  * calls for the new elements) leaves arithmetic scalars uninitialized instead of zeroing them.
-  * The cached update matrices are written before they are read (the front's rank-k product
-  * overwrites a lower triangle, or the caller zeroes it), so zeroing a new or grown one only
-  * cost a pass over its memory per refactored supernode. */
-template <typename T>
-struct UninitializedAllocator : std::allocator<T> {
-  template <typename U>
-  struct rebind {
-    typedef UninitializedAllocator<U> other;
-  };
-  UninitializedAllocator() = default;
-  template <typename U>
-  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
-  template <typename U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value) {
-    ::new (static_cast<void*>(p)) U;  // default-, not value-initialization
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-template <typename T, typename U>
-bool operator==(const UninitializedAllocator<T>&, const UninitializedAllocator<U>&) noexcept {
-  return true;
-}
-template <typename T, typename U>
-bool operator!=(const UninitializedAllocator<T>&, const UninitializedAllocator<U>&) noexcept {
-  return false;
-}
-
-/** \internal Storage of one cached update matrix (column-major, lower triangle meaningful); its
-  * new entries are not zeroed by resize(). */
-template <typename Scalar>
-using UpdateBuffer = std::vector<Scalar, UninitializedAllocator<Scalar> >;
-
 /** \internal A stack of update matrices (one per thread). Offsets, not pointers, so that it
   * may grow. */
 template <typename Scalar>

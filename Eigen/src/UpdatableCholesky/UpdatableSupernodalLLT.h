@@ -340,7 +340,7 @@ class UpdatableSupernodalLLT : public SparseSolverBase<UpdatableSupernodalLLT<Ma
     Index b = m_numeric.workspaceBytes() + m_solveCache.bytes() + m_inputDiff.bytes() + m_store.bytes() + m_transposed.bytes() +
               m_insertChange.bytes() + m_mergeChange.bytes() + m_structureBackup.bytes();
     for (const auto& node : m_factor.nodes)
-      b += Index(node.values.size() * sizeof(Scalar) + node.rows.capacity() * sizeof(StorageIndex) +
+      b += Index(node.values.capacity() * sizeof(Scalar) + node.rows.capacity() * sizeof(StorageIndex) +
                  node.parentPosition.capacity() * sizeof(StorageIndex) +
                  (node.assemblySource.capacity() + node.assemblyTarget.capacity()) * sizeof(Index));
     return b;
