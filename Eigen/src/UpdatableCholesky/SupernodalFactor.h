@@ -66,19 +66,29 @@ class SupernodeBlock {
  public:
   typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
 
+  /** The number of rows of the block (the supernode's rows). */
   Index rows() const { return m_rows; }
+  /** The number of columns of the block (the supernode's columns). */
   Index cols() const { return m_cols; }
+  /** rows() × cols(). */
   Index size() const { return m_rows * m_cols; }
   /** The number of values the storage holds without reallocating. */
   Index capacity() const { return Index(m_data.capacity()); }
+  /** The values, column-major with leading dimension rows(). */
   Scalar* data() { return m_data.data(); }
+  /** The values, column-major with leading dimension rows(). */
   const Scalar* data() const { return m_data.data(); }
+  /** The entry in row \a i and column \a j. */
   Scalar& operator()(Index i, Index j) { return m_data[std::size_t(i + j * m_rows)]; }
+  /** The entry in row \a i and column \a j. */
   const Scalar& operator()(Index i, Index j) const { return m_data[std::size_t(i + j * m_rows)]; }
   /** The block as an Eigen matrix expression (no copy). */
   Map<Dense> matrix() { return Map<Dense>(data(), m_rows, m_cols); }
+  /** The block as an Eigen matrix expression (no copy). */
   Map<const Dense> matrix() const { return Map<const Dense>(data(), m_rows, m_cols); }
+  /** Column \a j as an Eigen expression (no copy). */
   typename Map<Dense>::ColXpr col(Index j) { return matrix().col(j); }
+  /** Column \a j as an Eigen expression (no copy). */
   typename Map<const Dense>::ConstColXpr col(Index j) const { return matrix().col(j); }
 
   /** Gives the block \a rows × \a cols values; the previous values are not kept (nor copied when
@@ -100,6 +110,7 @@ class SupernodeBlock {
     matrix() = copy;
     return *this;
   }
+  /** Exchanges the storage and shape with \a other (no copy). */
   void swap(SupernodeBlock& other) {
     m_data.swap(other.m_data);
     std::swap(m_rows, other.m_rows);
