@@ -9,22 +9,26 @@
 // multifrontal form: supernode s assembles its right-hand side from c and the update vectors of
 // its children (scattered through the parentPosition maps, as the extend-add of the numeric
 // factorization), substitutes, and leaves its own update vector -L21 y_S (plus what its children
-// passed through) for its parent. The cache keeps c, y and every update vector, each supernode's
-// in a region of its own: about (2n + Σ rows below each supernode)·k scalars for k right-hand
-// sides. A substituted supernode gives bitwise the values of a full pass over the same factor and
-// right-hand side. The backward pass changes every entry of x whenever anything changed, so it
-// is always done in full.
+// passed through) for its parent. The cache keeps c and y by position, in two vectors as long as
+// the factor's positions (read and written in order of the supernodes, so that the checks and
+// copies of the clean supernodes stream through memory), and every update vector in a region of
+// its own: about (2n + Σ rows below each supernode)·k scalars for k right-hand sides. A supernode
+// is substituted again when its right-hand side is not bitwise the kept one (stricter than
+// equality: -0 against +0 counts as a change, which costs only a substitution), and a substituted
+// supernode gives bitwise the values of a full pass over the same factor and right-hand side. The
+// backward pass changes every entry of x whenever anything changed, so it is always done in full.
 //
 // insertDofs() and mergeDofs() keep the supernodes and renumber the columns (paper §4.2). The
-// kept values are stored by supernode, not by column number, so they stay where they are: the
-// clean supernodes keep their blocks, their rows and so all they kept, and only the dirty ones,
-// whose shapes change, get regions of their new sizes and are substituted again (followStructure(),
-// O(dirty supernodes) rather than a move of arrays of size n).
+// update vectors are stored by supernode, so they stay where they are; c and y move with their
+// supernode's columns when a layout anew moves them (followStructure(), once per layout: a local
+// relabeling moves no clean supernode's columns). Only the dirty supernodes, whose shapes change,
+// get regions of their new sizes and are substituted again.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_INCREMENTAL_FORWARD_SOLVE_H
 #define EIGEN_UPDATABLE_CHOLESKY_INCREMENTAL_FORWARD_SOLVE_H
 
 #include <cstring>
+#include <type_traits>
 #include <vector>
 
 namespace Eigen {
@@ -74,22 +78,44 @@ class ForwardSolveCache {
   /** Follows a change of the numbering that keeps the supernodes (insertDofs(), mergeDofs();
     * \a f has the new structure; \a reshaped: the only supernodes whose shape may have changed):
     * a supernode keeps what it kept when its shape (columns, rows below) is the same, and is
-    * substituted again in a region of its new size otherwise; the caller still reports the
+    * substituted again in a region of its new size otherwise; the kept c and y of the clean
+    * supernodes whose columns moved (a layout anew) move with them. The caller still reports the
     * supernodes whose blocks changed (markChanged()). */
   void followStructure(const Factor& f, const std::vector<Index>& reshaped) {
     if (!m_valid) return;
-    if (Index(m_redo.size()) != f.count()) return invalidate();
-    m_n = f.n;
+    const Index ns = f.count();
+    if (Index(m_redo.size()) != ns) return invalidate();
     // a region too small is abandoned for a new one at the end; the regions are laid out anew
     // once the abandoned ones hold as much as the live ones
     for (Index s : reshaped) resizeRegion(f, s);
     if (m_abandoned > m_live) compactRegions();
+    bool moved = f.n != m_n;
+    for (Index s = 0; s < ns && !moved; ++s) moved = f.nodes[s].firstCol != m_firstCol[s];
+    if (!moved) return;
+    std::vector<Scalar> rhs(std::size_t(f.n * m_k)), y(std::size_t(f.n * m_k));
+    for (Index s = 0; s < ns; ++s) {
+      const Index to = f.nodes[s].firstCol, from = m_firstCol[s];
+      m_firstCol[s] = to;
+      if (m_redo[s]) continue;
+      for (Index c = 0; c < m_k; ++c) {
+        std::copy(m_rhs.begin() + (from + c * m_n), m_rhs.begin() + (from + c * m_n + m_columns[s]),
+                  rhs.begin() + (to + c * f.n));
+        std::copy(m_y.begin() + (from + c * m_n), m_y.begin() + (from + c * m_n + m_columns[s]),
+                  y.begin() + (to + c * f.n));
+      }
+    }
+    m_rhs.swap(rhs);
+    m_y.swap(y);
+    m_n = f.n;
   }
 
   /** Frees the memory held (the next forward() does a full pass). */
   void release() {
     m_valid = false;
     std::vector<Scalar>().swap(m_kept);
+    std::vector<Scalar>().swap(m_rhs);
+    std::vector<Scalar>().swap(m_y);
+    std::vector<Index>().swap(m_firstCol);
     std::vector<Index>().swap(m_offset);
     std::vector<Index>().swap(m_columns);
     std::vector<Index>().swap(m_below);
@@ -99,8 +125,9 @@ class ForwardSolveCache {
 
   /** \returns the bytes held. */
   Index bytes() const {
-    return Index(m_kept.capacity() * sizeof(Scalar) +
-                 (m_offset.capacity() + m_columns.capacity() + m_below.capacity() + m_capacity.capacity()) * sizeof(Index) +
+    return Index((m_kept.capacity() + m_rhs.capacity() + m_y.capacity()) * sizeof(Scalar) +
+                 (m_firstCol.capacity() + m_offset.capacity() + m_columns.capacity() + m_below.capacity() +
+                  m_capacity.capacity()) * sizeof(Index) +
                  m_redo.capacity());
   }
 
@@ -127,12 +154,16 @@ class ForwardSolveCache {
     const Index ns = f.count();
     m_n = f.n;
     m_k = k;
+    m_rhs.resize(std::size_t(m_n * k));
+    m_y.resize(std::size_t(m_n * k));
+    m_firstCol.resize(ns);
     m_offset.resize(ns);
     m_columns.resize(ns);
     m_below.resize(ns);
     m_capacity.resize(ns);
     Index total = 0;
     for (Index s = 0; s < ns; ++s) {
+      m_firstCol[s] = f.nodes[s].firstCol;
       m_columns[s] = f.nodes[s].ncols;
       m_below[s] = f.nodes[s].below();
       m_offset[s] = total;
@@ -146,12 +177,9 @@ class ForwardSolveCache {
     m_redo.assign(ns, 1);
   }
 
-  /** Scalars of supernode s's region: its right-hand side and y (columns × k each), then its
-    * update vector (rows below × k), all column by column. */
-  Index regionLength(Index s) const { return (2 * m_columns[s] + m_below[s]) * m_k; }
-  Scalar* rhsOf(Index s) { return m_kept.data() + m_offset[s]; }
-  Scalar* yOf(Index s) { return m_kept.data() + m_offset[s] + m_columns[s] * m_k; }
-  Scalar* updateOf(Index s) { return m_kept.data() + m_offset[s] + 2 * m_columns[s] * m_k; }
+  /** Scalars of supernode s's region: its update vector (rows below × k), column by column. */
+  Index regionLength(Index s) const { return m_below[s] * m_k; }
+  Scalar* updateOf(Index s) { return m_kept.data() + m_offset[s]; }
 
   /** Gives supernode \a s a region of its current shape (a new one at the end when its own is
     * too small), to be substituted again if the shape changed. */
@@ -190,12 +218,19 @@ class ForwardSolveCache {
     m_abandoned = 0;
   }
 
-  /** \internal Whether a[0..n) == b[0..n) (by value: a NaN differs from everything, and the
-    * padding bytes of long double are not compared). */
-  static bool sameValues(const Scalar* a, const Scalar* b, Index n) {
-    bool same = true;
-    for (Index i = 0; i < n; ++i) same &= bool(a[i] == b[i]);
-    return same;
+  /** \internal Whether the right-hand side a[0..n) is the kept one b[0..n): for float and double
+    * scalars (real or complex), whether they hold the same bits, one memcmp (stricter than
+    * equality: -0 against +0 counts as a change, which costs only a substitution); for other
+    * scalars by value (long double carries padding bytes, which may differ). */
+  static bool sameRightHandSide(const Scalar* a, const Scalar* b, Index n) {
+    typedef typename NumTraits<Scalar>::Real Real;
+    if constexpr (std::is_same<Real, float>::value || std::is_same<Real, double>::value) {
+      return std::memcmp(a, b, std::size_t(n) * sizeof(Scalar)) == 0;
+    } else {
+      bool same = true;
+      for (Index i = 0; i < n; ++i) same &= bool(a[i] == b[i]);
+      return same;
+    }
   }
 
   template <int K>
@@ -207,8 +242,12 @@ class ForwardSolveCache {
     for (Index s = 0; s < ns; ++s) {
       const auto& node = f.nodes[s];
       resizeRegion(f, s);  // (a shape that changed unreported: substituted again)
+      if (node.firstCol != m_firstCol[s]) {  // (columns moved unreported: likewise)
+        m_firstCol[s] = node.firstCol;
+        m_redo[s] = 1;
+      }
       for (Index c = 0; c < k && !m_redo[s]; ++c)
-        m_redo[s] = !sameValues(X + node.firstCol + c * ldx, rhsOf(s) + c * node.ncols, node.ncols);
+        m_redo[s] = !sameRightHandSide(X + node.firstCol + c * ldx, m_rhs.data() + node.firstCol + c * m_n, node.ncols);
       if (m_redo[s] && f.parent[s] != -1) m_redo[f.parent[s]] = 1;
     }
     // 2. The pass: kept values where nothing changed, a multifrontal substitution elsewhere.
@@ -220,7 +259,7 @@ class ForwardSolveCache {
       const Index nr = node.nrows(), nc = node.ncols;
       if (!m_redo[s]) {
         for (Index c = 0; c < k; ++c)
-          std::memcpy(X + node.firstCol + c * ldx, yOf(s) + c * nc, std::size_t(nc) * sizeof(Scalar));
+          std::memcpy(X + node.firstCol + c * ldx, m_y.data() + node.firstCol + c * m_n, std::size_t(nc) * sizeof(Scalar));
         continue;
       }
       m_redo[s] = 0;
@@ -228,7 +267,7 @@ class ForwardSolveCache {
       prefetchSupernode(node);
       for (Index c = 0; c < k; ++c) {
         const Scalar* xs = X + node.firstCol + c * ldx;
-        std::memcpy(rhsOf(s) + c * nc, xs, std::size_t(nc) * sizeof(Scalar));
+        std::memcpy(m_rhs.data() + node.firstCol + c * m_n, xs, std::size_t(nc) * sizeof(Scalar));
         Scalar* vc = v + c * nr;
         std::memcpy(vc, xs, std::size_t(nc) * sizeof(Scalar));
         std::fill(vc + nc, vc + nr, Scalar(0));
@@ -247,7 +286,7 @@ class ForwardSolveCache {
       for (Index c = 0; c < k; ++c) {
         const Scalar* vc = v + c * nr;
         std::memcpy(X + node.firstCol + c * ldx, vc, std::size_t(nc) * sizeof(Scalar));
-        std::memcpy(yOf(s) + c * nc, vc, std::size_t(nc) * sizeof(Scalar));
+        std::memcpy(m_y.data() + node.firstCol + c * m_n, vc, std::size_t(nc) * sizeof(Scalar));
         if (nr > nc) std::memcpy(updateOf(s) + c * (nr - nc), vc + nc, std::size_t(nr - nc) * sizeof(Scalar));
       }
     }
@@ -256,8 +295,10 @@ class ForwardSolveCache {
 
   bool m_valid = false;
   Index m_n = 0, m_k = 0, m_substitutedColumns = 0;
-  /** Each supernode's region: its right-hand side c_S and y_S (columns × k each) and its update
-    * vector (rows below × k), at m_offset[s] */
+  std::vector<Scalar> m_rhs;       ///< the right-hand side c of the kept substitution, by position (n × k)
+  std::vector<Scalar> m_y;         ///< y = L^{-1} c, by position (n × k)
+  std::vector<Index> m_firstCol;   ///< the first column of each supernode where its c and y are kept
+  /** Each supernode's region: its update vector (rows below × k), at m_offset[s] */
   std::vector<Scalar> m_kept;
   std::vector<Index> m_offset;    ///< where each supernode's region starts
   std::vector<Index> m_columns;   ///< the columns of each supernode when its region was laid out
