@@ -78,10 +78,13 @@ class ForwardSolveCache {
   /** Follows a change of the numbering that keeps the supernodes (insertDofs(), mergeDofs();
     * \a f has the new structure; \a reshaped: the only supernodes whose shape may have changed):
     * a supernode keeps what it kept when its shape (columns, rows below) is the same, and is
-    * substituted again in a region of its new size otherwise; the kept c and y of the clean
-    * supernodes whose columns moved (a layout anew) move with them. The caller still reports the
+    * substituted again in a region of its new size otherwise. \a columnsMoved: the first
+    * columns of clean supernodes may have moved (a layout anew, not a local relabeling); their
+    * kept c and y then move with them, in one pass over the supernodes (without the flag, only
+    * a change of the position count starts that pass, and a column moved unreported is found by
+    * the next forward(), which substitutes that supernode again). The caller still reports the
     * supernodes whose blocks changed (markChanged()). */
-  void followStructure(const Factor& f, const std::vector<Index>& reshaped) {
+  void followStructure(const Factor& f, const std::vector<Index>& reshaped, bool columnsMoved) {
     if (!m_valid) return;
     const Index ns = f.count();
     if (Index(m_redo.size()) != ns) return invalidate();
@@ -89,9 +92,7 @@ class ForwardSolveCache {
     // once the abandoned ones hold as much as the live ones
     for (Index s : reshaped) resizeRegion(f, s);
     if (m_abandoned > m_live) compactRegions();
-    bool moved = f.n != m_n;
-    for (Index s = 0; s < ns && !moved; ++s) moved = f.nodes[s].firstCol != m_firstCol[s];
-    if (!moved) return;
+    if (!columnsMoved && f.n == m_n) return;  // (a local relabeling: no clean supernode moved)
     std::vector<Scalar> rhs(std::size_t(f.n * m_k)), y(std::size_t(f.n * m_k));
     for (Index s = 0; s < ns; ++s) {
       const Index to = f.nodes[s].firstCol, from = m_firstCol[s];

@@ -2040,7 +2040,7 @@ void UpdatableSupernodalLLT<MatrixType_, UpLo_, Ordering_>::replaceDofs(const Ma
     if (route == UpdateRoute::Mixed && !m_removedList.empty())
       for (Index s : dirty) m_numeric.clearRemoved(m_factor, s, m_removedPermuted.data());
     // (only the dirty supernodes gain or lose rows; recordUpdate() marks them to be substituted)
-    m_solveCache.followStructure(m_factor, dirty);
+    m_solveCache.followStructure(m_factor, dirty, !change.relabel.local);
   }
   for (Index s : dirty) mark[s] = 0;
   backup.release(m_factor, dirty);  // the previous blocks are not kept past the call
