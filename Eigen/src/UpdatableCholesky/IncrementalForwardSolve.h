@@ -12,7 +12,8 @@
 // passed through) for its parent. The cache keeps c and y by position, in two vectors as long as
 // the factor's positions (read and written in order of the supernodes, so that the checks and
 // copies of the clean supernodes stream through memory), and every update vector in a region of
-// its own: about (2n + Σ rows below each supernode)·k scalars for k right-hand sides. A supernode
+// its own: about (2 × positions + Σ rows below each supernode)·k scalars for k right-hand sides
+// (positions: n plus the free positions a cut's layout leaves, design §6). A supernode
 // is substituted again when its right-hand side is not bitwise the kept one (stricter than
 // equality: -0 against +0 counts as a change, which costs only a substitution), and a substituted
 // supernode gives bitwise the values of a full pass over the same factor and right-hand side. The
