@@ -48,17 +48,21 @@ bool downdateByBlockedReflections(Supernode<Scalar, StorageIndex>& node, Dense& 
   Scalar* N = W.data() + first * nr;
   const Index b = Index(DowndatePanelColumns);
   Block V(count, b), Vh(b, count), T(b, b), M(nr, b), MT(nr, b);
+  // the panel's rows of W, one column per row (rank × panel), so that the reductions and updates
+  // of step 1 run along the rank in contiguous memory rather than with stride nr
+  Block P(count, b);
   std::vector<RealScalar> d(b), tau(b);
   std::vector<char> active(b);
   for (Index j0 = start; j0 < nc; j0 += b) {
     const Index j1 = (std::min)(nc, j0 + b), pb = j1 - j0;
     T.topLeftCorner(pb, pb).setZero();
+    for (Index t = 0; t < count; ++t)
+      for (Index ii = 0; ii < pb; ++ii) P(t, ii) = N[j0 + ii + t * nr];
     // 1. the panel's reflections, each applied to the panel's rows below its own
     for (Index kk = 0; kk < pb; ++kk) {
       const Index k = j0 + kk;
       Scalar* lk = L + k * nr;
-      RealScalar xx = 0;
-      for (Index t = 0; t < count; ++t) xx += numext::abs2(N[k + t * nr]);
+      const RealScalar xx = P.col(kk).head(count).squaredNorm();
       active[kk] = xx > RealScalar(0) && !(removed && removed[node.rows[k]]);
       if (!active[kk]) {
         d[kk] = tau[kk] = RealScalar(0);
@@ -71,16 +75,16 @@ bool downdateByBlockedReflections(Supernode<Scalar, StorageIndex>& node, Dense& 
       const RealScalar beta = numext::sqrt(beta2);  // (|β|; β itself is −|β|)
       d[kk] = alpha + beta;
       tau[kk] = RealScalar(1) / (beta * (beta + alpha));
-      for (Index t = 0; t < count; ++t) V(t, kk) = numext::conj(N[k + t * nr]);
+      V.col(kk).head(count) = P.col(kk).head(count).conjugate();
       for (Index i = k + 1; i < j1; ++i) {  // y := y − τ (y J u) u^H on the panel's rows
-        Scalar s = lk[i] * d[kk];
-        for (Index t = 0; t < count; ++t) s -= N[i + t * nr] * V(t, kk);
+        auto row = P.col(i - j0).head(count);
+        Scalar s = lk[i] * d[kk] - row.cwiseProduct(V.col(kk).head(count)).sum();
         s *= tau[kk];
         lk[i] -= s * d[kk];
-        for (Index t = 0; t < count; ++t) N[i + t * nr] -= s * numext::conj(V(t, kk));
+        row -= s * V.col(kk).head(count).conjugate();
       }
       lk[k] = Scalar(-beta);
-      for (Index t = 0; t < count; ++t) N[k + t * nr] = Scalar(0);
+      P.col(kk).head(count).setZero();
       // T(0:kk, kk) = τ T(0:kk, 0:kk) V(:, 0:kk)^H V(:, kk), T(kk, kk) = τ
       if (kk > 0) {
         const Matrix<Scalar, Dynamic, 1> g = V.leftCols(kk).adjoint() * V.col(kk);
@@ -90,6 +94,8 @@ bool downdateByBlockedReflections(Supernode<Scalar, StorageIndex>& node, Dense& 
       T(kk, kk) = Scalar(tau[kk]);
       flops += 4.0 * double(count + 1) * double(j1 - k) + 2.0 * double(count) * double(kk);
     }
+    for (Index t = 0; t < count; ++t)
+      for (Index ii = 0; ii < pb; ++ii) N[j0 + ii + t * nr] = P(t, ii);
     // 2. ... applied to the rows below the panel at once: Y := Y − (Y J U) T U^H for
     //    Y = [L(rows, panel) N(rows, :)], U = [diag(d); V] (nothing to do when W was zero on
     //    the panel's rows)
