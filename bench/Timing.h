@@ -2,8 +2,13 @@
 // several methods with the median run of each, for benchmarks that report medians over repetitions
 // (the machines are noisy; a median ignores the odd slow run). Every run starts with cold caches
 // (evictCaches()): the last-level cache here holds a whole factor, so without it a method would be
-// timed on whatever the method before it left in the cache, and the interleaving's fixed order gives
-// every method the same predecessor each round.
+// timed on whatever the method before it left in the cache. Cold caches are not enough: each round
+// runs the methods in a fresh random order, because what the method before left behind still
+// shows through them. With the fixed cyclic order of stops up to 47, our insertDofs always ran
+// right after the Woodbury peer and our removeDofs right after the insertion; on igea (`--seams=3
+// --repeats=3 --lengths=5,100`) swapping the two in that order moved both the update and the solve
+// times by 10-60%: the insertion 2.05 -> 1.55 ms at l = 5 and 19.9 -> 18.0 ms at l = 100, its solve
+// 11.1 -> 6.9 and 9.7 -> 7.6 ms, and the removal's solve the other way (7.8 -> 9.0 ms at l = 100).
 
 #ifndef UPDATABLE_CHOLESKY_BENCH_TIMING_H
 #define UPDATABLE_CHOLESKY_BENCH_TIMING_H
@@ -15,6 +20,8 @@
 #include <exception>
 #include <string>
 #include <limits>
+#include <random>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -118,18 +125,24 @@ void timeFullAndRepeatedSolve(Solver& solver, const Rhs& b, Samples& full, Sampl
   repeated.add(timeMs([&] { x = solver.solve(b); }));
 }
 
-/** Runs \a count methods on one input \a repeats times, interleaved (round r runs every method
-    once, starting at method \a rotation, each after evictCaches()), through runOne(k), which returns a Sample (with `ok`,
-    `message` and `ms`) or throws. \returns per method the run of median time among those that
-    succeeded (the upper median for an even count), or its first run when none did. */
+/** Runs \a count methods on one input \a repeats times, interleaved (each round runs every method
+    once, in an order drawn at random from \a seed and the round, each after evictCaches()), through
+    runOne(k), which returns a Sample (with `ok`, `message` and `ms`) or throws. \returns per method
+    the run of median time among those that succeeded (the upper median for an even count), or its
+    first run when none did. */
 template <typename Sample, typename RunOne>
-std::vector<Sample> interleavedMedianRuns(std::size_t count, int repeats, int rotation, RunOne&& runOne)
+std::vector<Sample> interleavedMedianRuns(std::size_t count, int repeats, int seed, RunOne&& runOne)
 {
   std::vector<std::vector<Sample> > runs(count);
+  std::vector<std::size_t> order(count);
   for (int repeat = 0; repeat < repeats; ++repeat)
-    for (std::size_t i = 0; i < count; ++i)
+  {
+    for (std::size_t i = 0; i < count; ++i) order[i] = i;
+    std::mt19937 generator(0x9e3779b9u * unsigned(seed) + 7919u * unsigned(repeat) + 1u);
+    for (std::size_t i = count; i > 1; --i)  // (Fisher-Yates by hand: std::shuffle's draws differ by library)
+      std::swap(order[i - 1], order[std::size_t(generator() % i)]);
+    for (std::size_t k : order)
     {
-      const std::size_t k = (i + std::size_t(rotation)) % count;
       runs[k].emplace_back();
       evictCaches();
       try
@@ -142,6 +155,7 @@ std::vector<Sample> interleavedMedianRuns(std::size_t count, int repeats, int ro
         runs[k].back().message = std::string("exception: ") + e.what();
       }
     }
+  }
   std::vector<Sample> samples(count);
   for (std::size_t k = 0; k < count; ++k)
   {

@@ -292,7 +292,7 @@ public:
         bench::Stopwatch watch;
         if (!makeCut(l, m_options.seed + 1000003u * unsigned(l) + 7919u * unsigned(s), cut)) break;
         cutMs.add(watch.ms());
-        std::vector<Sample> samples = runSeam(cut, s);
+        std::vector<Sample> samples = runSeam(cut, 131 * l + s);
         ok = check(cut, samples) && ok;
         for (std::size_t k = 0; k < m_methods.size(); ++k) summary[k].add(samples[k]);
         copies.add(double(cut.m));
@@ -382,11 +382,11 @@ private:
     return true;
   }
 
-  /** Runs every method on one cut, methods rotated by \a rotation. */
-  std::vector<Sample> runSeam(const Cut& cut, int rotation)
+  /** Runs every method on one cut, in random orders drawn from \a seed (see interleavedMedianRuns). */
+  std::vector<Sample> runSeam(const Cut& cut, int seed)
   {
     std::vector<Sample> samples = bench::interleavedMedianRuns<Sample>(
-        m_methods.size(), m_options.repeats, rotation, [&](std::size_t k) { return runMethod(m_methods[k], cut); });
+        m_methods.size(), m_options.repeats, seed, [&](std::size_t k) { return runMethod(m_methods[k], cut); });
     return samples;
   }
 
@@ -778,7 +778,7 @@ int main(int argc, char** argv)
               "Eigen::seamPath, %d per l, base seed %u, cut with Eigen::cutMesh along every piece; %d run(s) of every "
               "method per seam, their median counts\n",
               kShift, options.diagonalShift ? "diag(L)" : "I", options.seams, options.seed, options.repeats);
-  std::printf("  every time is update + one solve (b uniform in [-1,1]), methods interleaved per seam after one "
+  std::printf("  every time is update + one solve (b uniform in [-1,1]), methods interleaved per seam (a random order each round) after one "
               "warm-up seam\n");
   std::printf("  compiled for %s (ours, Eigen); %s\n", bench::compiledInstructionSet(),
               bench::openBlasCoreNote().c_str());
