@@ -62,11 +62,11 @@ bool downdateByBlockedReflections(Supernode<Scalar, StorageIndex>& node, Dense& 
     for (Index kk = 0; kk < pb; ++kk) {
       const Index k = j0 + kk;
       Scalar* lk = L + k * nr;
-      const RealScalar xx = P.col(kk).head(count).squaredNorm();
+      const RealScalar xx = P.col(kk).squaredNorm();
       active[kk] = xx > RealScalar(0) && !(removed && removed[node.rows[k]]);
       if (!active[kk]) {
         d[kk] = tau[kk] = RealScalar(0);
-        V.col(kk).head(count).setZero();
+        V.col(kk).setZero();
         continue;
       }
       const RealScalar alpha = numext::real(lk[k]), x = numext::sqrt(xx);
@@ -75,16 +75,16 @@ bool downdateByBlockedReflections(Supernode<Scalar, StorageIndex>& node, Dense& 
       const RealScalar beta = numext::sqrt(beta2);  // (|β|; β itself is −|β|)
       d[kk] = alpha + beta;
       tau[kk] = RealScalar(1) / (beta * (beta + alpha));
-      V.col(kk).head(count) = P.col(kk).head(count).conjugate();
+      V.col(kk) = P.col(kk).conjugate();
       for (Index i = k + 1; i < j1; ++i) {  // y := y − τ (y J u) u^H on the panel's rows
-        auto row = P.col(i - j0).head(count);
-        Scalar s = lk[i] * d[kk] - row.cwiseProduct(V.col(kk).head(count)).sum();
+        auto row = P.col(i - j0);
+        Scalar s = lk[i] * d[kk] - row.cwiseProduct(V.col(kk)).sum();
         s *= tau[kk];
         lk[i] -= s * d[kk];
-        row -= s * V.col(kk).head(count).conjugate();
+        row -= s * V.col(kk).conjugate();
       }
       lk[k] = Scalar(-beta);
-      P.col(kk).head(count).setZero();
+      P.col(kk).setZero();
       // T(0:kk, kk) = τ T(0:kk, 0:kk) V(:, 0:kk)^H V(:, kk), T(kk, kk) = τ
       if (kk > 0) {
         const Matrix<Scalar, Dynamic, 1> g = V.leftCols(kk).adjoint() * V.col(kk);
