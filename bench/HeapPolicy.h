@@ -8,11 +8,8 @@
 // after another one (or itself, in an earlier call) freed memory was charged tens of milliseconds
 // that depend on what ran before it: bunny, 2000-vertex seams, insertDofs took 44-50 ms in the
 // interleaved benchmark and 21-23 ms alone. retainFreedMemory() turns trimming off and serves
-// every allocation from the heap (mallopt: no mmap at all), for every method in the process alike: a
-// long-running application (an interactive editor) reaches the same state once its heap has grown.
-// Until stop 48 blocks above 32 MiB (glibc's largest mmap threshold) were still mapped and unmapped
-// per call, which charged the peers that allocate such blocks per call the page faults of each:
-// cholmod_rowadd on igea cuts of 5 vertices took 108-149 ms with them and 25 ms without.
+// allocations up to 32 MiB from the heap (mallopt), for every method in the process alike: a long-
+// running application (an interactive editor) reaches the same state once its heap has grown.
 //
 // With UC_BENCH_HUGE_PAGES=1 the heap is also backed by transparent huge pages where the kernel
 // offers them on request (useHugePagesForHeap(): the benchmark re-executes itself once with
@@ -113,9 +110,8 @@ inline bool retainFreedMemory()
   if (mallocDefaultsAsked()) return false;
 #if defined(__GLIBC__)
   const bool trim = mallopt(M_TRIM_THRESHOLD, 1 << 30) == 1;  // (never reached: the heap keeps its top)
-  const bool threshold = mallopt(M_MMAP_THRESHOLD, 32 << 20) == 1; // (glibc's largest)
-  const bool mapped = mallopt(M_MMAP_MAX, 0) == 1;  // (and no block is mapped: all come from the heap)
-  return trim && threshold && mapped;
+  const bool mapped = mallopt(M_MMAP_THRESHOLD, 32 << 20) == 1; // (glibc's largest: bigger blocks are mapped)
+  return trim && mapped;
 #else
   return false;
 #endif
@@ -127,7 +123,7 @@ inline std::string heapPolicyNote(bool retained)
   char text[320];
   std::snprintf(text, sizeof text,
                 "heap: %s, %s; a first touch of a fresh 4 KiB page costs %.2f us here",
-                retained ? "freed memory kept in the process (no trim, no mmap; HeapPolicy.h)"
+                retained ? "freed memory kept in the process (no trim, mmap above 32 MiB only; HeapPolicy.h)"
                          : "glibc's defaults (freed memory returned to the kernel)",
                 heapHugePages() ? "transparent huge pages on request (glibc.malloc.hugetlb=1)" : "4 KiB pages",
                 pageFaultMicroseconds());
