@@ -85,6 +85,9 @@ struct UpdateWorkspace {
     * supernode's rows), and where each column of P (and of N) starts to be non-zero */
   std::vector<Matrix<Scalar, Dynamic, Dynamic> > ownPositive, ownNegative;
   std::vector<std::vector<Index> > ownPositiveStart, ownNegativeStart;
+  /** folding routes: the W columns of a fold by one signed rotation sweep (foldIntoSupernode()),
+    * kept between folds so that a small supernode's fold allocates nothing for them */
+  std::vector<Scalar> sweep;
   void resize(Index supernodes) {
     mark.assign(supernodes, 0);
     rank.assign(supernodes, 0);

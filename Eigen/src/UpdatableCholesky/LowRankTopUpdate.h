@@ -387,7 +387,12 @@ void extendCorrections(const std::vector<Correction>& previous, const std::vecto
     out.emplace_back();
     out.back().sign = c.sign;
     out.back().W.setZero(m, c.W.cols());
-    for (Index i = 0; i < Index(at.size()); ++i) out.back().W.row(at[i]) = c.W.row(i);
+    const Index rows = Index(at.size());
+    for (Index j = 0; j < c.W.cols(); ++j) {  // (by columns: W is column-major, a row copy strides over all of it)
+      const auto* from = c.W.data() + j * rows;
+      auto* to = out.back().W.data() + j * m;
+      for (Index i = 0; i < rows; ++i) to[at[i]] = from[i];
+    }
   }
 }
 
@@ -565,56 +570,69 @@ bool foldIntoSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNume
   typedef Matrix<Scalar, Dynamic, Dynamic> Dense;
   typedef typename NumTraits<Scalar>::Real RealScalar;
   std::vector<FoldSource> sources[2];
-  Dense W[2];
   std::vector<Dense>* carried[2] = {&ws.carried, &ws.carriedNegative};
   auto& node = f.nodes[s];
   const Index nr = node.nrows(), m = node.below();
+  Index rank[2] = {0, 0};
   for (int sign = 0; sign < 2; ++sign) {  // 0: the update P, 1: the downdate N
     std::vector<FoldSource>& src = sources[sign];
-    std::vector<Dense>& from = *carried[sign];
+    const std::vector<Dense>& from = *carried[sign];
     for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c])
       if (from[c].cols() > 0)
         src.push_back(FoldSource{(childPositions ? (*childPositions)[c] : f.nodes[c].parentPosition)[0], from[c].cols(), c});
-    Dense& own = sign == 0 ? ws.ownPositive[s] : ws.ownNegative[s];  // the supernode's own input change
+    const Dense& own = sign == 0 ? ws.ownPositive[s] : ws.ownNegative[s];  // the supernode's own input change
     const std::vector<Index>& ownStart = sign == 0 ? ws.ownPositiveStart[s] : ws.ownNegativeStart[s];
     for (Index t = 0; t < own.cols(); ++t) src.push_back(FoldSource{ownStart[t], 1, -2 - t});
     std::sort(src.begin(), src.end(), [](const FoldSource& a, const FoldSource& b) { return a.start < b.start; });
-    Index rank = 0;
-    for (const FoldSource& x : src) rank += x.count;
-    W[sign].setZero(nr, rank);
-    Index q = 0;
-    for (const FoldSource& x : src) {
+    for (const FoldSource& x : src) rank[sign] += x.count;
+  }
+  // Writes the sign's sources, in the order of its list, into the zeroed nr-row columns at \a W.
+  auto gather = [&](int sign, Scalar* W) {
+    std::vector<Dense>& from = *carried[sign];
+    Dense& own = sign == 0 ? ws.ownPositive[s] : ws.ownNegative[s];
+    for (const FoldSource& x : sources[sign]) {
       if (x.child < 0) {  // an own column
-        W[sign].col(q++) = own.col(-2 - x.child);
+        Map<Matrix<Scalar, Dynamic, 1> >(W, nr) = own.col(-2 - x.child);
+        W += nr;
         continue;
       }
       const Dense& wc = from[x.child];
       const auto& pos = childPositions ? (*childPositions)[x.child] : f.nodes[x.child].parentPosition;
-      for (Index j = 0; j < wc.cols(); ++j, ++q)
-        for (Index k = 0; k < wc.rows(); ++k) W[sign](pos[k], q) = wc(k, j);
+      for (Index j = 0; j < wc.cols(); ++j, W += nr) {
+        const Scalar* column = wc.data() + j * wc.rows();
+        for (Index k = 0; k < wc.rows(); ++k) W[pos[k]] = column[k];
+      }
       from[x.child] = Dense();
     }
     own = Dense();
-  }
-  const Index p = W[0].cols(), q = W[1].cols();
+  };
+  const Index p = rank[0], q = rank[1];
+  Dense out[2];  // what is left lives on the rows below
   if (p > 0 && q > 0 && p < Index(BlockedFoldMinRank) && q < Index(BlockedFoldMinRank)) {
     // small ranks of both signs (each would be folded by rotations): one sweep over the block,
-    // Givens rotations then hyperbolic ones on each column (false: a lost pivot)
-    Dense both(nr, p + q);
-    both.leftCols(p) = W[0];
-    both.rightCols(q) = W[1];
+    // Givens rotations then hyperbolic ones on each column (false: a lost pivot), in the
+    // workspace's buffer (a fold of a small supernode costs little more than its allocations)
+    ws.sweep.assign(std::size_t(nr * (p + q)), Scalar(0));
+    gather(0, ws.sweep.data());
+    gather(1, ws.sweep.data() + nr * p);
+    Map<Dense> both(ws.sweep.data(), nr, p + q);
     const Index start = (std::min)(sources[0].front().start, sources[1].front().start);
     if (!signedRotationSweep(node, both, Index(0), p + q, p, start, removed, flops)) return false;
-    W[0] = both.leftCols(p);
-    W[1] = both.rightCols(q);
+    if (m == 0) return true;
+    out[0] = both.block(nr - m, 0, m, p);
+    out[1] = both.block(nr - m, p, m, q);
   } else {
+    Dense W[2];
+    for (int sign = 0; sign < 2; ++sign) {
+      W[sign].setZero(nr, rank[sign]);
+      gather(sign, W[sign].data());
+    }
     flops += foldSources(node, W[0], sources[0], removed);
     // the downdate L L^H − W W^H (false: a lost pivot, the block partly changed)
     if (!downdateSources(node, W[1], sources[1], removed, flops)) return false;
+    if (m == 0) return true;
+    for (int sign = 0; sign < 2; ++sign) out[sign] = W[sign].bottomRows(m);
   }
-  if (m == 0) return true;
-  Dense out[2];  // what is left lives on the rows below
-  for (int sign = 0; sign < 2; ++sign) out[sign] = W[sign].bottomRows(m);
   if (out[0].cols() > 0 && out[1].cols() > 0) {
     compressSignedChange(out[0], out[1], flops);
     if (removed)  // (the rows of removed dofs stay exactly zero: rounding in the new basis is cut off)
