@@ -1091,6 +1091,77 @@ TEST_CASE_TEMPLATE("a supernode block keeps its storage when it changes shape, a
   CHECK(tiny.capacity() < 25);
 }
 
+TEST_CASE_TEMPLATE("a cached update matrix moves to new rows without a copy and is laid out when read", Scalar, double,
+                   std::complex<float>) {
+  // an insertion relabels a folded supernode's update matrix to its new rows (copy rows zero), a
+  // merge that drops only rows it does not store relabels it back, and whoever reads it lays it
+  // out first: each must give the matrix a dense reference gives
+  using Eigen::internal::updatable_cholesky::CachedUpdate;
+  typedef Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> Dense;
+  const Eigen::Index m0 = 6;
+  Dense U0 = Dense::Random(m0, m0);
+  U0 = (U0 * U0.adjoint()).eval();
+  CachedUpdate<Scalar> U;
+  U.resize(std::size_t(m0 * m0));
+  std::copy(U0.data(), U0.data() + m0 * m0, U.data());
+  CHECK(U.inOwnLayout());
+  const Scalar* storage = U.data();
+  auto lower = [](const Dense& A) { return Dense(A.template triangularView<Eigen::Lower>()); };
+  auto laidOut = [&](CachedUpdate<Scalar>& B, Eigen::Index m) {
+    B.layOut();
+    REQUIRE(B.inOwnLayout());
+    REQUIRE(Eigen::Index(B.size()) == m * m);
+    return lower(Eigen::Map<const Dense>(B.data(), m, m));
+  };
+  // two cuts: rows 0..5 -> 0,1,3,4,5,7 of 8, then 0..7 -> 0,1,2,3,4,6,7,8 of 9
+  const std::vector<Eigen::Index> first{0, 1, 3, 4, 5, 7}, second{0, 1, 2, 3, 4, 6, 7, 8};
+  Dense expected1 = Dense::Zero(8, 8), expected2 = Dense::Zero(9, 9);
+  for (Eigen::Index j = 0; j < m0; ++j)
+    for (Eigen::Index i = j; i < m0; ++i) expected1(first[i], first[j]) = U0(i, j);
+  for (Eigen::Index j = 0; j < 8; ++j)
+    for (Eigen::Index i = j; i < 8; ++i) expected2(second[i], second[j]) = expected1(i, j);
+  U.relabelRows(m0, first, 8);
+  CHECK_FALSE(U.inOwnLayout());
+  CHECK(U.data() == storage);  // (not copied)
+  U.relabelRows(8, second, 9);
+  CHECK(U.data() == storage);
+  CachedUpdate<Scalar> V;
+  V.swap(U);  // (the layout goes with the storage)
+  CHECK(U.empty());
+  CachedUpdate<Scalar> W;
+  W.resize(std::size_t(m0 * m0));
+  std::copy(V.data(), V.data() + m0 * m0, W.data());
+  W.relabelRows(m0, first, 8);
+  W.relabelRows(8, second, 9);
+  CHECK(laidOut(W, 9) == lower(expected2));
+  // a merge back to the first layout's rows: the dropped rows (2 and 5 of 9) are not stored
+  const std::vector<Eigen::Index> keep{0, 1, 3, 4, 6, 7, 8};
+  Dense expected3 = Dense::Zero(7, 7);
+  for (Eigen::Index j = 0; j < 7; ++j)
+    for (Eigen::Index i = j; i < 7; ++i) expected3(i, j) = expected2(keep[i], keep[j]);
+  REQUIRE(V.keepRows(9, keep.data(), 7));
+  CHECK(V.data() == storage);
+  CachedUpdate<Scalar> Y = V;
+  CHECK(laidOut(Y, 7) == lower(expected3));
+  const std::vector<Eigen::Index> undo{0, 1, 2, 3, 4, 6};  // then drop the first cut's other copy (row 5 of 7)
+  REQUIRE(V.keepRows(7, undo.data(), 6));
+  CHECK(V.inOwnLayout());  // back to the original rows: nothing to lay out
+  CHECK(V.data() == storage);
+  CHECK(laidOut(V, 6) == lower(U0));
+  // a merge that drops a stored row is refused (the caller gathers instead) and changes nothing
+  CachedUpdate<Scalar> X;
+  X.resize(std::size_t(m0 * m0));
+  std::copy(U0.data(), U0.data() + m0 * m0, X.data());
+  X.relabelRows(m0, first, 8);
+  const std::vector<Eigen::Index> dropsStored{0, 1, 2, 3, 4, 5, 6};  // row 7 of 8 holds U0's last row
+  CHECK_FALSE(X.keepRows(8, dropsStored.data(), 7));
+  CHECK(laidOut(X, 8) == lower(expected1));
+  // resize() starts a matrix in its own layout
+  X.relabelRows(8, second, 9);
+  X.resize(4);
+  CHECK(X.inOwnLayout());
+}
+
 TEST_CASE_TEMPLATE("a failed insertDofs keeps the deferred corrections that earlier folds left", Cfg, UC_CORE_CONFIGS) {
   // the folds of a cut and of its merge leave corrections of the folded supernodes' cached update
   // matrices deferred (a grid large enough that they pile up slower than they are applied); the

@@ -263,7 +263,7 @@ struct FactorStructureBackup {
   std::vector<Index> firstCol, ncols;
   std::vector<std::vector<StorageIndex> > rows, parentPosition;  ///< dirty supernodes only
   std::vector<SupernodeBlock<Scalar> > values;                    ///< dirty supernodes only
-  std::vector<UpdateBuffer<Scalar> > cache;                        ///< dirty supernodes only
+  std::vector<CachedUpdate<Scalar> > cache;                        ///< dirty supernodes only
   /** The deferred corrections of the dirty supernodes' cached update matrices, set aside with
     * them rather than applied: a refactored supernode never needs them, a folded one carries them
     * on (extended to its new rows), and only a refactored child of a folded one, whose previous
@@ -273,7 +273,7 @@ struct FactorStructureBackup {
     * (by size): a buffer that is already allocated, touched and large enough needs neither the
     * page faults nor the zeroing of a new one (the update matrices of an insertion and of the
     * merge that undoes it are the same sizes, swapped). */
-  SparePool<UpdateBuffer<Scalar> > spareCache;
+  SparePool<CachedUpdate<Scalar> > spareCache;
   /** The previous call's blocks of its dirty supernodes, kept likewise (by capacity). */
   SparePool<SupernodeBlock<Scalar> > spareValues;
 
@@ -290,8 +290,11 @@ struct FactorStructureBackup {
       rows[s].clear();
       if (s < Index(pending.size())) pending[s].clear();
       if (values[s].capacity() > 0) spareValues.add(values[s].capacity(), values[s]);  // (leaves it empty)
-      if (!cache[s].empty()) spareCache.add(Index(cache[s].capacity()), cache[s]);  // (by capacity: what it can hold)
-      UpdateBuffer<Scalar>().swap(cache[s]);
+      if (!cache[s].empty()) {  // (by capacity: what it can hold; any values, in no layout of a matrix)
+        cache[s].resize(cache[s].size());
+        spareCache.add(Index(cache[s].capacity()), cache[s]);
+      }
+      CachedUpdate<Scalar>().swap(cache[s]);
       for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) parentPosition[c].clear();
     }
     spareCache.seal();
@@ -308,6 +311,7 @@ struct FactorStructureBackup {
   /** Applies the set-aside corrections of supernode \a s to its previous update matrix (cache[s],
     * \a m × \a m), which is then exact on its own. */
   void applyPendingTo(Index s, Index m) {
+    cache[s].layOut();
     if (!pending[s].empty()) SupernodalNumeric<Scalar, StorageIndex>::applyCorrectionsTo(pending[s], m, cache[s].data());
   }
 
@@ -328,7 +332,7 @@ struct FactorStructureBackup {
   /** Moves into \a buffer the smallest spare buffer of at least \a size scalars, if there is one
     * that holds at most twice as many (so that buffers do not grow from call to call; its values
     * are stale: the caller writes what it reads). */
-  void takeSpare(Index size, UpdateBuffer<Scalar>& buffer) {
+  void takeSpare(Index size, CachedUpdate<Scalar>& buffer) {
     if (size == 0 || !spareCache.take(size, 2 * size, buffer)) return;
 #ifndef NDEBUG  // stale values: poisoned, so that a test reading them fails
     std::fill(buffer.begin(), buffer.end(), Scalar(std::numeric_limits<typename NumTraits<Scalar>::Real>::quiet_NaN()));
@@ -400,7 +404,7 @@ void forEachRelabeledSupernode(const SupernodalFactor<Scalar, StorageIndex>& f, 
   * supernodes. The assembly maps stay as they are (see remapAssemblyMaps()).
   * \a position: scratch by new position, all -1 between uses. */
 template <typename Scalar, typename StorageIndex>
-void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<UpdateBuffer<Scalar> >& cache,
+void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<CachedUpdate<Scalar> >& cache,
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
                    const std::vector<Index>& dirty, FactorStructureBackup<Scalar, StorageIndex>& backup,
                    std::vector<StorageIndex>& position) {
@@ -499,7 +503,7 @@ void relabelFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<Update
 /** \internal Undoes relabelFactor(): puts back the structure and the dirty supernodes' values
   * and cached update matrices (not the assembly maps: the caller rebuilds them). */
 template <typename Scalar, typename StorageIndex>
-void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<UpdateBuffer<Scalar> >& cache,
+void restoreFactor(SupernodalFactor<Scalar, StorageIndex>& f, std::vector<CachedUpdate<Scalar> >& cache,
                    const DofRelabeling<StorageIndex>& relabel, const std::vector<char>& mark,
                    const std::vector<Index>& dirty, FactorStructureBackup<Scalar, StorageIndex>& backup) {
   const Index ns = f.count();

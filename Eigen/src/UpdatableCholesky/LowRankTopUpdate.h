@@ -359,8 +359,8 @@ void copyByRuns(const Scalar* previous, const std::vector<PositionRun>& runs, st
   * \a U (m × m) at the new positions \a at of its rows: the rows and columns of the copies a
   * supernode gained below are zero, as for the previous matrix extended with identity. \a runs:
   * scratch. */
-template <typename Scalar>
-void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index m, UpdateBuffer<Scalar>& U,
+template <typename Scalar, typename Buffer>
+void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index m, Buffer& U,
                         std::vector<PositionRun>& runs) {
   const Index oldM = Index(at.size());
   positionRuns(at.data(), oldM, runs);
@@ -396,17 +396,18 @@ void extendCorrections(const std::vector<Correction>& previous, const std::vecto
   }
 }
 
-/** \internal Gives a folded supernode its previous block and update matrix, written into its new
-  * rows and columns: the rows of the copies it gained are zero and the columns of the copies it
-  * gained (an insertion of copies of its own dofs) are those of a diagonal entry
+/** \internal Gives a folded supernode its previous block and update matrix, in its new rows and
+  * columns: the rows of the copies it gained are zero and the columns of the copies it gained
+  * (an insertion of copies of its own dofs) are those of a diagonal entry
   * sqrt(pivotOf(permuted column)), as in the factor of the previous matrix extended with a
-  * diagonal placeholder for each copy (its old columns are the same). Without new rows they are
-  * taken from the backup (\a oldValues, \a oldU: \returns true, they must then be recomputed if
-  * the update is reverted), else copied (\a at, \a runs: scratch). */
+  * diagonal placeholder for each copy (its old columns are the same). The update matrix is taken
+  * from the backup (\a oldU), relabeled to the new rows without a copy (CachedUpdate); the block
+  * too when the rows are the same (\returns true), else it is copied (\a at, \a runs: scratch).
+  * Either way the supernode must be recomputed if the update is reverted. */
 template <typename Scalar, typename StorageIndex, typename PivotOf>
 bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<StorageIndex>& oldRows,
-                       SupernodeBlock<Scalar>& oldValues, UpdateBuffer<Scalar>& oldU,
-                       const std::vector<StorageIndex>& newPosition, std::vector<Index>& at, UpdateBuffer<Scalar>& U,
+                       SupernodeBlock<Scalar>& oldValues, CachedUpdate<Scalar>& oldU,
+                       const std::vector<StorageIndex>& newPosition, std::vector<Index>& at, CachedUpdate<Scalar>& U,
                        std::vector<PositionRun>& runs, PivotOf&& pivotOf) {
   const Index nr = node.nrows(), nc = node.ncols, m = nr - nc, oldNr = Index(oldRows.size()), oldNc = oldValues.cols();
   eigen_assert(oldNc <= nc && oldValues.rows() == oldNr && "a folded supernode keeps its columns");
@@ -430,8 +431,14 @@ bool takePreviousBlock(Supernode<Scalar, StorageIndex>& node, const std::vector<
     }
   }
   for (Index k = oldNc; k < oldNr; ++k) at[k - oldNc] = at[k] - nc;  // (the rows below, from the supernode's first one below)
-  at.resize(oldNr - oldNc);
-  extendUpdateMatrix(oldU.data(), at, m, U, runs);
+  const Index oldM = oldNr - oldNc;
+  at.resize(oldM);
+  if (oldM > 0) {
+    U.swap(oldU);
+    U.relabelRows(oldM, at, m);
+  } else {
+    extendUpdateMatrix(oldU.data(), at, m, U, runs);
+  }
   return false;
 }
 
@@ -701,14 +708,19 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
   while (nc < nr && kept[nc] < oldNc) ++nc;
   const Index m = nr - nc;
   SupernodeBlock<Scalar> block;
-  UpdateBuffer<Scalar> cut;
+  CachedUpdate<Scalar> cut;
   if (ok) {  // the block, the update matrix and its deferred corrections lose the merged dofs
     // (into the buffers relabelFactor() gave the new structure, set aside in the backup meanwhile)
     block.swap(backup.values[s]);
     cut.swap(backup.cache[s]);
     for (auto& correction : numeric.pendingCorrections(s)) {
+      eigen_assert(correction.W.rows() == oldM && "a deferred correction of another shape than its update matrix");
       Matrix<Scalar, Dynamic, Dynamic> W(m, correction.W.cols());
-      for (Index i = 0; i < m; ++i) W.row(i) = correction.W.row(kept[nc + i] - oldNc);
+      for (Index j = 0; j < W.cols(); ++j) {  // (by columns, as extendCorrections())
+        const Scalar* from = correction.W.data() + j * oldM;
+        Scalar* to = W.data() + j * m;
+        for (Index i = 0; i < m; ++i) to[i] = from[kept[nc + i] - oldNc];
+      }
       correction.W.swap(W);
     }
     gatherRuns(kept.data(), nr, runs);
@@ -718,10 +730,15 @@ bool foldMergedSupernode(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNu
       copyByRuns(node.values.data() + kept[j] * oldNr, runs, first, block.data() + j * nr, Index(0), nr);
     }
     for (Index i = 0; i < m; ++i) kept[nc + i] -= oldNc;  // (positions below)
-    gatherRuns(kept.data() + nc, m, runs);
-    cut.resize(m * m);
-    std::size_t first = 0;
-    for (Index j = 0; j < m; ++j) copyByRuns(U.data() + kept[nc + j] * oldM, runs, first, cut.data() + j * m, j, m);
+    if (U.keepRows(oldM, kept.data() + nc, m)) {  // (the merged rows are not stored: relabeled, not copied)
+      cut.swap(U);
+    } else {
+      U.layOut();
+      gatherRuns(kept.data() + nc, m, runs);
+      cut.resize(m * m);
+      std::size_t first = 0;
+      for (Index j = 0; j < m; ++j) copyByRuns(U.data() + kept[nc + j] * oldM, runs, first, cut.data() + j * m, j, m);
+    }
   }
   previousStructure();  // (back to the new rows; the previous block and update matrix are in the backup)
   if (!ok) return false;
@@ -800,9 +817,9 @@ Index refactorAndFold(SupernodalFactor<Scalar, StorageIndex>& f, SupernodalNumer
       captured = foldMergedSupernode(f, numeric, s, p != -1 && folded[p], backup, newPosition, ws, at, runs, flops);
     } else if (captured) {
       auto& node = f.nodes[s];
+      taken.push_back(s);  // (its previous update matrix leaves the backup)
       if (takePreviousBlock(node, backup.rows[s], backup.values[s], backup.cache[s], newPosition, at, numeric.cache()[s],
                             runs, pivotOf)) {
-        taken.push_back(s);
         numeric.pendingCorrections(s).swap(backup.pending[s]);  // (its update matrix's deferred corrections come along)
       } else {  // extended like the update matrix (rows \a at); the backup keeps its own for a revert
         extendCorrections(backup.pending[s], at, node.below(), numeric.pendingCorrections(s));

@@ -8,6 +8,7 @@
 #ifndef EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_FACTOR_H
 #define EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_FACTOR_H
 
+#include <algorithm>
 #include <memory>
 #include <type_traits>
 #include <utility>
@@ -53,6 +54,108 @@ bool operator!=(const UninitializedAllocator<T>&, const UninitializedAllocator<U
   * new entries are not zeroed by resize(). */
 template <typename Scalar>
 using UpdateBuffer = std::vector<Scalar, UninitializedAllocator<Scalar> >;
+
+/** \internal A cached update matrix (m × m, column-major, lower triangle meaningful), stored in
+  * its own layout or in an earlier one: a supernode folded by an insertion gains copy rows below,
+  * which are zero in its previous update matrix, so the matrix keeps its storage and a row map
+  * (stored row i is row layout[i]) instead of being copied into the new rows (measurement log,
+  * stop 49: up to 0.7 ms of a 3 ms insertion). Whoever reads the values calls layOut() first;
+  * a merge that drops only rows the storage does not hold relabels them (keepRows()). The map
+  * goes with the storage through swap(); resize() starts a matrix in its own layout. */
+template <typename Scalar>
+class CachedUpdate {
+ public:
+  /** The stored values (in the matrix's own layout only when inOwnLayout()). */
+  Scalar* data() { return m_values.data(); }
+  /** The stored values (in the matrix's own layout only when inOwnLayout()). */
+  const Scalar* data() const { return m_values.data(); }
+  /** The number of stored values. */
+  std::size_t size() const { return m_values.size(); }
+  /** The number of values the storage holds without reallocating. */
+  std::size_t capacity() const { return m_values.capacity(); }
+  /** Whether nothing is stored. */
+  bool empty() const { return m_values.empty(); }
+  /** The stored values, first. */
+  typename UpdateBuffer<Scalar>::iterator begin() { return m_values.begin(); }
+  /** The stored values, past the last. */
+  typename UpdateBuffer<Scalar>::iterator end() { return m_values.end(); }
+  /** Gives it \a count values in its own layout; the previous values are not kept. */
+  void resize(std::size_t count) {
+    m_values.resize(count);
+    m_layout.clear();
+  }
+  /** Exchanges storage and layout with \a other. */
+  void swap(CachedUpdate& other) {
+    m_values.swap(other.m_values);
+    m_layout.swap(other.m_layout);
+    std::swap(m_rows, other.m_rows);
+  }
+  /** Whether the stored values are in the matrix's own layout. */
+  bool inOwnLayout() const { return m_layout.empty(); }
+  /** The rows of the matrix (\a rows of them) move: row i becomes row \a at[i] (increasing) of
+    * \a m, and the others are zero. Nothing is copied. */
+  void relabelRows(Index rows, const std::vector<Index>& at, Index m) {
+    eigen_assert(Index(at.size()) == rows && (m_layout.empty() || m_rows == rows) && "relabelRows: wrong row count");
+    EIGEN_UNUSED_VARIABLE(rows);
+    if (m_layout.empty()) {
+      m_layout.assign(at.begin(), at.end());
+    } else {
+      for (Index& r : m_layout) r = at[r];
+    }
+    m_rows = m;
+    dropIdentity();
+  }
+  /** The matrix (\a rows rows) keeps only its rows \a kept[0..m) (increasing), which become rows
+    * 0..m: relabeled without a copy when every stored row is kept. \returns false (nothing
+    * changed) when a stored row is dropped. */
+  bool keepRows(Index rows, const Index* kept, Index m) {
+    eigen_assert((m_layout.empty() || m_rows == rows) && "keepRows: wrong row count");
+    const Index stored = m_layout.empty() ? rows : Index(m_layout.size());
+    m_next.resize(std::size_t(stored));
+    for (Index p = 0, i = 0; p < stored; ++p) {
+      const Index r = m_layout.empty() ? p : m_layout[p];
+      while (i < m && kept[i] < r) ++i;
+      if (i == m || kept[i] != r) return false;
+      m_next[p] = i;
+    }
+    m_layout.swap(m_next);
+    m_rows = m;
+    dropIdentity();
+    return true;
+  }
+  /** Writes the values into the matrix's own layout (a no-op when they are). */
+  void layOut() {
+    if (m_layout.empty()) return;
+    const Index stored = Index(m_layout.size()), m = m_rows;
+    UpdateBuffer<Scalar> out(std::size_t(m * m));
+    for (Index j = 0, q = 0; j < m; ++j) {  // (the lower triangle: rows j..m of column j)
+      Scalar* column = out.data() + j * m;
+      std::fill(column + j, column + m, Scalar(0));
+      if (q < stored && m_layout[q] == j) {
+        const Scalar* from = m_values.data() + q * stored;
+        for (Index p = q; p < stored; ++p) column[m_layout[p]] = from[p];
+        ++q;
+      }
+    }
+    m_values.swap(out);
+    m_layout.clear();
+  }
+  /** Bytes held. */
+  Index bytes() const {
+    return Index(m_values.capacity() * sizeof(Scalar) + (m_layout.capacity() + m_next.capacity()) * sizeof(Index));
+  }
+
+ private:
+  void dropIdentity() {
+    bool identity = Index(m_layout.size()) == m_rows;
+    for (Index p = 0; p < Index(m_layout.size()) && identity; ++p) identity = m_layout[p] == p;
+    if (identity) m_layout.clear();
+  }
+  UpdateBuffer<Scalar> m_values;
+  std::vector<Index> m_layout;  ///< stored row -> row of the matrix (increasing); empty: the identity
+  std::vector<Index> m_next;    ///< scratch of keepRows()
+  Index m_rows = 0;             ///< the matrix's rows when the layout is not its own
+};
 
 /** \internal The dense block of a supernode: rows() × cols() values, column-major, in storage
   * that keeps its capacity when the block shrinks or changes shape. An update that reshapes a

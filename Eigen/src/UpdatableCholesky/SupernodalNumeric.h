@@ -344,7 +344,7 @@ class SupernodalNumeric {
 
   /** The cached update matrices (supernode s: below() × below(), lower triangle), for updates
     * that change them in place. */
-  std::vector<UpdateBuffer<Scalar> >& cache() { return m_cache; }
+  std::vector<CachedUpdate<Scalar> >& cache() { return m_cache; }
 
   /** Defers the correction U_s += sign · W W^H (sign +1 or -1) of the cached update matrix of
     * supernode \a s (W: below() × r) until the cache is read; most such corrections are never
@@ -367,7 +367,10 @@ class SupernodalNumeric {
   /** The deferred corrections of supernode \a s (their rows of removed dofs are zeroed with U's). */
   std::vector<Correction>& pendingCorrections(Index s) { return m_pending[s]; }
   /** Applies the deferred corrections of supernode \a s to its cached update matrix. \returns the flops. */
-  double applyCorrections(const Factor& f, Index s) { return applyCorrectionsTo(m_pending[s], f.nodes[s].below(), m_cache[s].data()); }
+  double applyCorrections(const Factor& f, Index s) {
+    m_cache[s].layOut();
+    return applyCorrectionsTo(m_pending[s], f.nodes[s].below(), m_cache[s].data());
+  }
   /** Applies the corrections \a list (emptied) to the update matrix \a U (m × m, lower triangle),
     * e.g. a previous update matrix set aside with its corrections by an update. \returns the flops. */
   static double applyCorrectionsTo(std::vector<Correction>& list, Index m, Scalar* U) {
@@ -390,6 +393,7 @@ class SupernodalNumeric {
     Node& node = f.nodes[s];
     const Index nr = node.nrows(), nc = node.ncols, m = nr - nc;
     Scalar* L = node.values.data();
+    if (Index(m_cache.size()) > s) m_cache[s].layOut();
     const bool cached = m > 0 && Index(m_cache.size()) > s && Index(m_cache[s].size()) == m * m;
     Scalar* U = cached ? m_cache[s].data() : nullptr;
     bool changed = false;
@@ -528,7 +532,10 @@ class SupernodalNumeric {
       return m_cacheUpdates ? m_cache[c].data() : m_stacks[m_location[c].stack].buffer.data() + m_location[c].offset;
     };
     for (Index c = f.firstChild[s]; c != -1; c = f.nextSibling[c]) {
-      if (m_cacheUpdates && !m_pending[c].empty()) applyCorrections(f, c);
+      if (m_cacheUpdates) {
+        m_cache[c].layOut();  // (a folded child may keep an earlier layout)
+        if (!m_pending[c].empty()) applyCorrections(f, c);
+      }
       extendAddIntoBlock(f.nodes[c], childUpdate(c), L, nr, nc);
     }
     // 3. dense factorization of the front, then the rest of the children's update matrices
@@ -639,7 +646,7 @@ class SupernodalNumeric {
   std::vector<Location> m_location;
   std::vector<UpdateStack<Scalar> > m_stacks;
   std::vector<Index> m_listPosition;  ///< scratch of makeListSchedule(), all zero between calls
-  std::vector<UpdateBuffer<Scalar> > m_cache;  ///< per supernode update matrix, when caching
+  std::vector<CachedUpdate<Scalar> > m_cache;  ///< per supernode update matrix, when caching
   std::vector<std::vector<Correction> > m_pending;  ///< per supernode deferred corrections U += ±W W^H
   bool m_cacheUpdates = false, m_cacheValid = false;
   std::atomic<Index> m_failed{-1};
