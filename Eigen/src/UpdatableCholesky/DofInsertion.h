@@ -291,7 +291,7 @@ struct FactorStructureBackup {
       if (s < Index(pending.size())) pending[s].clear();
       if (values[s].capacity() > 0) spareValues.add(values[s].capacity(), values[s]);  // (leaves it empty)
       if (!cache[s].empty()) {  // (by capacity: what it can hold; any values, in no layout of a matrix)
-        cache[s].resize(cache[s].size());
+        cache[s].discardLayout();
         spareCache.add(Index(cache[s].capacity()), cache[s]);
       }
       CachedUpdate<Scalar>().swap(cache[s]);

@@ -3,7 +3,9 @@
 // block, so that later updates can insert or remove rows and columns of one supernode without
 // moving the others. The factor also keeps the supernodal elimination tree, each supernode's
 // relative row positions inside its parent (for the extend-add of update matrices), the map
-// that scatters the input matrix's values into the blocks, and the flop counts.
+// that scatters the input matrix's values into the blocks, and the flop counts; and the cached
+// update matrices, which an insertion moves to new rows without a copy, with the runs of
+// positions (PositionRun) that blocks and update matrices are moved by when they are copied.
 
 #ifndef EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_FACTOR_H
 #define EIGEN_UPDATABLE_CHOLESKY_SUPERNODAL_FACTOR_H
@@ -54,6 +56,77 @@ bool operator!=(const UninitializedAllocator<T>&, const UninitializedAllocator<U
   * new entries are not zeroed by resize(). */
 template <typename Scalar>
 using UpdateBuffer = std::vector<Scalar, UninitializedAllocator<Scalar> >;
+
+/** \internal A monotone map of positions as runs of consecutive ones: [from, from + length) goes
+  * to [to, to + length). A cut adds a few copy rows to hundreds, a merge drops a few: a column is
+  * then moved by a few block copies instead of an index per entry. */
+struct PositionRun {
+  Index from, to, length;
+};
+
+/** \internal The runs of the map from(k) -> to(k), k < \a count, both increasing. */
+template <typename From, typename To>
+void monotoneRuns(Index count, From&& from, To&& to, std::vector<PositionRun>& runs) {
+  runs.clear();
+  for (Index k = 0; k < count; ++k) {
+    const Index source = from(k), target = to(k);
+    if (!runs.empty() && runs.back().from + runs.back().length == source && runs.back().to + runs.back().length == target)
+      ++runs.back().length;
+    else
+      runs.push_back(PositionRun{source, target, 1});
+  }
+}
+
+/** \internal The runs of the spread k -> \a target[k] (k < \a count, target increasing). */
+inline void positionRuns(const Index* target, Index count, std::vector<PositionRun>& runs) {
+  monotoneRuns(count, [](Index k) { return k; }, [&](Index k) { return target[k]; }, runs);
+}
+
+/** \internal The runs of the gather \a source[i] -> i (i < \a count, source increasing). */
+inline void gatherRuns(const Index* source, Index count, std::vector<PositionRun>& runs) {
+  monotoneRuns(count, [&](Index i) { return source[i]; }, [](Index i) { return i; }, runs);
+}
+
+/** \internal Writes column[begin, end) from \a previous (indexed by source position) through
+  * \a runs (targets within [0, end)), zero where no run lands (the copies' rows, which the
+  * previous matrix extended with identity has zero there). \a first: a run at or before the
+  * first that reaches \a begin; it is advanced to that run, so that a walk over columns with
+  * increasing begin passes each run once. */
+template <typename Scalar>
+void copyByRuns(const Scalar* previous, const std::vector<PositionRun>& runs, std::size_t& first, Scalar* column,
+                Index begin, Index end) {
+  while (first < runs.size() && runs[first].to + runs[first].length <= begin) ++first;
+  Index i = begin;
+  for (std::size_t r = first; r < runs.size(); ++r) {
+    const PositionRun& run = runs[r];
+    const Index skip = (std::max)(Index(0), begin - run.to), to = run.to + skip;
+    std::fill(column + i, column + to, Scalar(0));
+    std::copy(previous + run.from + skip, previous + run.from + run.length, column + to);
+    i = run.to + run.length;
+  }
+  std::fill(column + i, column + end, Scalar(0));
+}
+
+/** \internal The previous update matrix \a oldU (lower triangle, at.size() square) written into
+  * \a U (m × m) at the new positions \a at of its rows: the rows and columns of the copies a
+  * supernode gained below are zero, as for the previous matrix extended with identity. \a runs:
+  * scratch. */
+template <typename Scalar, typename Buffer>
+void extendUpdateMatrix(const Scalar* oldU, const std::vector<Index>& at, Index m, Buffer& U,
+                        std::vector<PositionRun>& runs) {
+  const Index oldM = Index(at.size());
+  positionRuns(at.data(), oldM, runs);
+  U.resize(m * m);  // (only the lower triangle is written: the upper one is never read)
+  std::size_t first = 0;
+  for (Index j = 0, b = 0; j < m; ++j) {
+    if (b < oldM && at[b] == j) {  // a previous column (from its diagonal on); else a copy's, zero
+      copyByRuns(oldU + b * oldM, runs, first, U.data() + j * m, j, m);
+      ++b;
+    } else {
+      std::fill(U.data() + j * m + j, U.data() + (j + 1) * m, Scalar(0));
+    }
+  }
+}
 
 /** \internal A cached update matrix (m × m, column-major, lower triangle meaningful), stored in
   * its own layout or in an earlier one: a supernode folded by an insertion gains copy rows below,
@@ -111,38 +184,35 @@ class CachedUpdate {
   bool keepRows(Index rows, const Index* kept, Index m) {
     eigen_assert((m_layout.empty() || m_rows == rows) && "keepRows: wrong row count");
     const Index stored = m_layout.empty() ? rows : Index(m_layout.size());
-    m_next.resize(std::size_t(stored));
+    static thread_local std::vector<Index> next;  // (scratch: the new layout, kept only on success)
+    next.resize(std::size_t(stored));
     for (Index p = 0, i = 0; p < stored; ++p) {
       const Index r = m_layout.empty() ? p : m_layout[p];
       while (i < m && kept[i] < r) ++i;
       if (i == m || kept[i] != r) return false;
-      m_next[p] = i;
+      next[std::size_t(p)] = i;
     }
-    m_layout.swap(m_next);
+    m_layout.assign(next.begin(), next.end());
     m_rows = m;
     dropIdentity();
     return true;
   }
-  /** Writes the values into the matrix's own layout (a no-op when they are). */
+  /** Writes the values into the matrix's own layout (a no-op when they are), by runs of
+    * consecutive rows (extendUpdateMatrix()). */
   void layOut() {
     if (m_layout.empty()) return;
-    const Index stored = Index(m_layout.size()), m = m_rows;
-    UpdateBuffer<Scalar> out(std::size_t(m * m));
-    for (Index j = 0, q = 0; j < m; ++j) {  // (the lower triangle: rows j..m of column j)
-      Scalar* column = out.data() + j * m;
-      std::fill(column + j, column + m, Scalar(0));
-      if (q < stored && m_layout[q] == j) {
-        const Scalar* from = m_values.data() + q * stored;
-        for (Index p = q; p < stored; ++p) column[m_layout[p]] = from[p];
-        ++q;
-      }
-    }
+    static thread_local std::vector<PositionRun> runs;  // (scratch: a layout is written by one thread)
+    UpdateBuffer<Scalar> out;
+    extendUpdateMatrix(m_values.data(), m_layout, m_rows, out, runs);
     m_values.swap(out);
     m_layout.clear();
   }
+  /** Forgets the layout: the storage (and capacity) stays, its values no longer describe any
+    * matrix (a spare, to be given new values by resize()). */
+  void discardLayout() { m_layout.clear(); }
   /** Bytes held. */
   Index bytes() const {
-    return Index(m_values.capacity() * sizeof(Scalar) + (m_layout.capacity() + m_next.capacity()) * sizeof(Index));
+    return Index(m_values.capacity() * sizeof(Scalar) + m_layout.capacity() * sizeof(Index));
   }
 
  private:
@@ -153,7 +223,6 @@ class CachedUpdate {
   }
   UpdateBuffer<Scalar> m_values;
   std::vector<Index> m_layout;  ///< stored row -> row of the matrix (increasing); empty: the identity
-  std::vector<Index> m_next;    ///< scratch of keepRows()
   Index m_rows = 0;             ///< the matrix's rows when the layout is not its own
 };
 
