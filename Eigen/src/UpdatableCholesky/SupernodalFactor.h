@@ -184,15 +184,23 @@ class CachedUpdate {
   bool keepRows(Index rows, const Index* kept, Index m) {
     eigen_assert((m_layout.empty() || m_rows == rows) && "keepRows: wrong row count");
     const Index stored = m_layout.empty() ? rows : Index(m_layout.size());
-    static thread_local std::vector<Index> next;  // (scratch: the new layout, kept only on success)
-    next.resize(std::size_t(stored));
-    for (Index p = 0, i = 0; p < stored; ++p) {
-      const Index r = m_layout.empty() ? p : m_layout[p];
-      while (i < m && kept[i] < r) ++i;
-      if (i == m || kept[i] != r) return false;
-      next[std::size_t(p)] = i;
+    // walks the stored rows with their new numbers (sink(p, i): stored row p becomes row i);
+    // false at the first stored row that is not kept
+    auto walk = [&](auto&& sink) {
+      for (Index p = 0, i = 0; p < stored; ++p) {
+        const Index r = m_layout.empty() ? p : m_layout[p];
+        while (i < m && kept[i] < r) ++i;
+        if (i == m || kept[i] != r) return false;
+        sink(p, i);
+      }
+      return true;
+    };
+    if (!walk([](Index, Index) {})) return false;  // (checked first: nothing changes on false)
+    if (m_layout.empty()) {
+      m_layout.resize(std::size_t(stored));
+      for (Index p = 0; p < stored; ++p) m_layout[p] = p;
     }
-    m_layout.assign(next.begin(), next.end());
+    walk([&](Index p, Index i) { m_layout[p] = i; });  // (row p is read before it is rewritten)
     m_rows = m;
     dropIdentity();
     return true;
@@ -201,7 +209,7 @@ class CachedUpdate {
     * consecutive rows (extendUpdateMatrix()). */
   void layOut() {
     if (m_layout.empty()) return;
-    static thread_local std::vector<PositionRun> runs;  // (scratch: a layout is written by one thread)
+    std::vector<PositionRun> runs;  // (a few per matrix, beside the new m × m storage)
     UpdateBuffer<Scalar> out;
     extendUpdateMatrix(m_values.data(), m_layout, m_rows, out, runs);
     m_values.swap(out);
